@@ -1,0 +1,56 @@
+//! The interface between constraints and solvers.
+
+use crate::ConstraintError;
+use isochor_mesh::Vec3;
+
+/// The compliance matrix `C` of a constraint set (eq. 18 of Francu et al. 2021).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Compliance {
+    /// Diagonal `C` (element constraints, lumped nodal constraints, hard constraints as zeros).
+    Diagonal(Vec<f64>),
+    /// General symmetric `C` as `(row, col, value)` triplets, both triangles present,
+    /// duplicates summed (consistent nodal compliance).
+    Sparse(Vec<(usize, usize, f64)>),
+}
+
+/// A set of `m` scalar constraints `phi(x) = C p` on the `3n` position DOFs
+/// (DOF `3 * vertex + axis`).
+///
+/// Sparse structure is split from values so that solvers build sparsity patterns once:
+/// the `*_pattern` methods return the index list of every entry (duplicates allowed; they
+/// are summed), fixed for the life of the set, and the `*_values` methods fill a buffer of
+/// the same length and order.
+pub trait ConstraintSet: Send + Sync + std::fmt::Debug {
+    /// Short name for reports (`"nodal"`, `"element"`, `"zonal"`, ...).
+    fn name(&self) -> &'static str;
+
+    /// Number of constraints `m` (rows of `G`).
+    fn num_constraints(&self) -> usize;
+
+    /// Constraint values `phi(x)`, written into `out` (length `m`).
+    fn values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError>;
+
+    /// `(row, dof)` of every Jacobian entry.
+    fn jacobian_pattern(&self) -> Vec<(usize, usize)>;
+
+    /// Jacobian entries `G = d phi / dx` in the order of [`ConstraintSet::jacobian_pattern`].
+    fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError>;
+
+    /// `(dof, dof)` of every geometric stiffness entry (both triangles).
+    fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)>;
+
+    /// Geometric stiffness `K_g = sum_i p_i Hess(phi_i)` (eq. 23) for multipliers `p`
+    /// (length `m`), in the order of [`ConstraintSet::geometric_stiffness_pattern`].
+    fn geometric_stiffness_values(
+        &self,
+        x: &[Vec3],
+        multipliers: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), ConstraintError>;
+
+    /// The compliance `C` (constant under Assumption 2 of Francu et al. 2021).
+    fn compliance(&self) -> Compliance;
+
+    /// Per-tet pressure for visualization, from the multipliers at positions `x`.
+    fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64>;
+}

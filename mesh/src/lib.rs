@@ -1,0 +1,17 @@
+//! # isochor-mesh
+//!
+//! Geometry and topology of linear tetrahedral meshes, with no physics: the [`TetMesh`] and
+//! its rest data, the boundary surface, adjacency and k-rings, named selections, volume
+//! zones (Sheen et al. 2021, sec. 4 and 6), mesh generators, and file I/O (VTU/PVD for
+//! ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
+
+mod error;
+mod tet_mesh;
+mod zones;
+
+pub use error::MeshError;
+pub use tet_mesh::{shape_matrix, signed_volume, Orientation, TetMesh, DEGENERACY};
+pub use zones::Zones;
+
+/// A 3-vector of `f64`: positions, displacements, forces.
+pub type Vec3 = nalgebra::Vector3<f64>;

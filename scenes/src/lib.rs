@@ -1,0 +1,1 @@
+//! isochor scenes

@@ -1,0 +1,8 @@
+//! # isochor-validation
+//!
+//! The proof that the numerics are right: one finite-difference harness ([`fd`]) and one
+//! set of proptest strategies ([`strategies`]) shared by every test in `tests/`, plus the
+//! locking regressions and studies.
+
+pub mod fd;
+pub mod strategies;
