@@ -51,6 +51,17 @@ pub trait ConstraintSet: Send + Sync + std::fmt::Debug {
     /// The compliance `C` (constant under Assumption 2 of Francu et al. 2021).
     fn compliance(&self) -> Compliance;
 
-    /// Per-tet pressure for visualization, from the multipliers at positions `x`.
+    /// Per-tet pressure for visualization, from the multipliers at positions `x` (one value
+    /// per tet, tension positive). Empty when `x` or `multipliers` has the wrong length, so
+    /// callers that check the length against the tet count reject it.
     fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64>;
+
+    /// The vertex that constraint `row` is attached to, if any: solvers order each such
+    /// row right after that vertex's DOFs in the KKT system, which keeps the `C = 0`
+    /// factorization pivot-safe (see NOTES-toolchain). `None` (the default) for rows
+    /// spread over many vertices, such as zonal constraints.
+    fn anchor_vertex(&self, row: usize) -> Option<usize> {
+        let _ = row;
+        None
+    }
 }

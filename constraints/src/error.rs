@@ -13,6 +13,13 @@ pub enum ConstraintError {
         value: f64,
         reason: &'static str,
     },
+    /// A buffer or position array has the wrong length for this constraint set.
+    #[error("{what} has length {actual}, expected {expected}")]
+    DimensionMismatch {
+        what: &'static str,
+        expected: usize,
+        actual: usize,
+    },
     /// A zone refers to a tet that is not in the mesh, or is empty.
     #[error("zone {zone}: {reason}")]
     InvalidZone { zone: usize, reason: String },

@@ -9,14 +9,42 @@
 //! - 3x3 matrices are flattened column-major (nalgebra's storage order): `vec(F)[3*j + i] = F[(i, j)]`,
 //!   so `dP/dF` is the 9x9 matrix `d vec(P) / d vec(F)`.
 //! - Element DOF vectors are vertex-major: `[x0.x, x0.y, x0.z, x1.x, ...]`.
+//!
+//! Contents:
+//! - densities ([`Hyperelastic`]): [`Mooney`] (eq. 29 of Francu et al. 2021),
+//!   [`DistortionalNeoHookean`] (eq. 32), [`BonetWood`] (eq. 30), [`StableNeoHookean`]
+//!   (Smith et al. 2018), [`FbarNeoHookean`] (eq. 10-12 of Sheen et al. 2021);
+//! - penalties ([`VolumetricPenalty`]): [`LogPenalty`], [`QuadraticPenalty`], [`SheenPenalty`]
+//!   (eq. 13-15 of Sheen et al. 2021);
+//! - [`Composed`] `Psi_dev + lambda U(J)`: [`standard_neo_hookean`], [`quadratic_neo_hookean`],
+//!   [`constrained_neo_hookean`];
+//! - kernels: [`tet`] (`F`, `dF/dx`, element energy/gradient/Hessian), [`triangle`] (`F~`, `J~`),
+//!   [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
+//! - [`kinematics`]: `vec`, `cof F = dJ/dF`, `d2J/dF2`, shared by every `J`-based term.
 
+mod composed;
+mod epidermis;
 mod error;
+pub mod kinematics;
 mod material;
+mod materials;
 mod parameters;
+mod penalties;
+mod projection;
+pub mod tet;
+pub mod triangle;
 
+pub use composed::{
+    constrained_neo_hookean, quadratic_neo_hookean, standard_neo_hookean, Composed,
+    ConstrainedNeoHookean, QuadraticNeoHookean, StandardNeoHookean,
+};
+pub use epidermis::{Epidermis, TriangleTerms};
 pub use error::{OutOfDomain, ParameterError};
 pub use material::{Hyperelastic, VolumetricPenalty};
+pub use materials::{BonetWood, DistortionalNeoHookean, FbarNeoHookean, Mooney, StableNeoHookean};
 pub use parameters::{bulk_modulus, Lame};
+pub use penalties::{LogPenalty, QuadraticPenalty, SheenPenalty};
+pub use projection::project_to_psd;
 
 /// 9x9 matrix: `dP/dF` in column-major flattening.
 pub type Matrix9 = nalgebra::SMatrix<f64, 9, 9>;

@@ -14,21 +14,10 @@ pub struct Lame {
 impl Lame {
     /// From `(mu, lambda)`; both finite, `mu > 0`, `lambda >= 0`.
     pub fn new(mu: f64, lambda: f64) -> Result<Self, ParameterError> {
-        if !(mu.is_finite() && mu > 0.0) {
-            return Err(ParameterError {
-                name: "mu",
-                value: mu,
-                reason: "the shear modulus must be finite and positive",
-            });
-        }
-        if !(lambda.is_finite() && lambda >= 0.0) {
-            return Err(ParameterError {
-                name: "lambda",
-                value: lambda,
-                reason: "lambda must be finite and non-negative",
-            });
-        }
-        Ok(Lame { mu, lambda })
+        Ok(Lame {
+            mu: require_mu(mu)?,
+            lambda: require_lambda(lambda)?,
+        })
     }
 
     /// From Young's modulus and Poisson's ratio: `mu = E / (2 (1 + nu))`,
@@ -45,7 +34,10 @@ impl Lame {
                 reason: "nu = 0.5 makes lambda infinite; use a mixed or zonal method",
             });
         }
-        Lame::new(e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)))
+        Lame::new(
+            e / (2.0 * (1.0 + nu)),
+            e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+        )
     }
 
     /// Shear modulus from `(E, nu)`, valid up to and including `nu = 0.5`.
@@ -90,4 +82,43 @@ fn check_poisson(nu: f64) -> Result<(), ParameterError> {
             reason: "Poisson's ratio must lie in (-1, 0.5]",
         })
     }
+}
+
+/// Returns `value` if `ok`, else a [`ParameterError`] naming the parameter. `ok` must be false
+/// for NaN (write comparisons so that NaN fails them).
+pub(crate) fn require(
+    name: &'static str,
+    value: f64,
+    ok: bool,
+    reason: &'static str,
+) -> Result<f64, ParameterError> {
+    if ok {
+        Ok(value)
+    } else {
+        Err(ParameterError {
+            name,
+            value,
+            reason,
+        })
+    }
+}
+
+/// A finite, positive shear modulus `mu`.
+pub(crate) fn require_mu(mu: f64) -> Result<f64, ParameterError> {
+    require(
+        "mu",
+        mu,
+        mu.is_finite() && mu > 0.0,
+        "the shear modulus must be finite and positive",
+    )
+}
+
+/// A finite, non-negative `lambda`.
+pub(crate) fn require_lambda(lambda: f64) -> Result<f64, ParameterError> {
+    require(
+        "lambda",
+        lambda,
+        lambda.is_finite() && lambda >= 0.0,
+        "lambda must be finite and non-negative",
+    )
 }

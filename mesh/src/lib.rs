@@ -5,11 +5,20 @@
 //! zones (Sheen et al. 2021, sec. 4 and 6), mesh generators, and file I/O (VTU/PVD for
 //! ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
 
+mod adjacency;
+mod closest;
 mod error;
+pub mod generate;
+mod selection;
+mod surface;
 mod tet_mesh;
 mod zones;
 
+pub use adjacency::Adjacency;
+pub use closest::{closest_point_on_triangle, TriangleBvh};
 pub use error::MeshError;
+pub use selection::{FaceSelection, Region, VertexSelection};
+pub use surface::{check_closed_manifold, BoundarySurface, TET_FACES};
 pub use tet_mesh::{shape_matrix, signed_volume, Orientation, TetMesh, DEGENERACY};
 pub use zones::Zones;
 

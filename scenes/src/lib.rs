@@ -1,1 +1,25 @@
-//! isochor scenes
+//! # isochor-scenes
+//!
+//! The top layer of isochor: the TOML scene format ([`scene`]), `--set` overrides
+//! ([`overrides`]), the built-in scene library ([`builtin`], reproducing the experiments of
+//! Francu et al. 2021 and Sheen et al. 2021), problem construction ([`problem`]), probes
+//! ([`probes`]), output writers ([`output`]: VTU frames, `summary.json`, CSV logs, PNG plots),
+//! method comparisons ([`compare`]) and the `isochor` command-line program ([`cli`]).
+//!
+//! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
+//! [`RunResult`].
+
+pub mod builtin;
+mod error;
+pub mod load;
+mod meshio;
+pub mod overrides;
+pub mod probes;
+pub mod problem;
+pub mod scene;
+pub mod selection;
+
+pub use error::SceneError;
+pub use load::{load_scene, SceneSource};
+pub use overrides::Override;
+pub use scene::Scene;

@@ -1,6 +1,6 @@
 //! Proptest strategies shared by the test suites: deformation gradients and perturbed meshes.
 
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
 
 /// Random `F = I + M` with entries of `M` in `[-spread, spread]`.
@@ -30,4 +30,139 @@ pub fn with_determinant(j_min: f64, j_max: f64, inverted: bool) -> impl Strategy
             }
             Some(f)
         })
+}
+
+/// A random, reasonably shaped, positively oriented rest tet: a perturbed regular-ish tet
+/// scaled by a factor in `[0.1, 10]` and translated, with `V >= 0.02 l_max^3`.
+pub fn rest_tet() -> impl Strategy<Value = [Vector3<f64>; 4]> {
+    (
+        proptest::array::uniform12(-0.3..0.3f64),
+        -1.0..1.0f64,
+        proptest::array::uniform3(-5.0..5.0f64),
+    )
+        .prop_filter_map("rest tet must be well shaped", |(d, log_scale, shift)| {
+            let base = [
+                Vector3::new(0.0, 0.0, 0.0),
+                Vector3::new(1.0, 0.0, 0.0),
+                Vector3::new(0.0, 1.0, 0.0),
+                Vector3::new(0.0, 0.0, 1.0),
+            ];
+            let scale = 10f64.powf(log_scale);
+            let shift = Vector3::from(shift);
+            let x: [Vector3<f64>; 4] = std::array::from_fn(|a| {
+                (base[a] + Vector3::new(d[3 * a], d[3 * a + 1], d[3 * a + 2])) * scale + shift
+            });
+            let v = (x[1] - x[0]).dot(&(x[2] - x[0]).cross(&(x[3] - x[0]))) / 6.0;
+            let l = max_edge(&x);
+            (v >= 0.02 * l * l * l).then_some(x)
+        })
+}
+
+/// A random rest triangle in 3D with area `>= 0.1 l_max^2`, sized between 0.1 and 10.
+pub fn rest_triangle() -> impl Strategy<Value = [Vector3<f64>; 3]> {
+    (proptest::array::uniform9(-1.0..1.0f64), -1.0..1.0f64).prop_filter_map(
+        "rest triangle must be well shaped",
+        |(d, log_scale)| {
+            let scale = 10f64.powf(log_scale);
+            let x: [Vector3<f64>; 3] = std::array::from_fn(|a| {
+                Vector3::new(d[3 * a], d[3 * a + 1], d[3 * a + 2]) * scale
+            });
+            let area = 0.5 * (x[1] - x[0]).cross(&(x[2] - x[0])).norm();
+            let l = max_edge(&x);
+            (area >= 0.1 * l * l).then_some(x)
+        },
+    )
+}
+
+/// Longest edge of a simplex given by its vertices.
+pub fn max_edge<const N: usize>(x: &[Vector3<f64>; N]) -> f64 {
+    let mut l: f64 = 0.0;
+    for a in 0..N {
+        for b in a + 1..N {
+            l = l.max((x[a] - x[b]).norm());
+        }
+    }
+    l
+}
+
+/// A rest mesh and a deformed configuration `x` of its vertices.
+#[derive(Debug, Clone)]
+pub struct Deformed {
+    /// The rest mesh.
+    pub mesh: isochor_mesh::TetMesh,
+    /// Deformed positions, one per vertex.
+    pub x: Vec<isochor_mesh::Vec3>,
+}
+
+impl Deformed {
+    /// Smallest volume ratio `v_e / V_e` over the tets.
+    pub fn min_volume_ratio(&self) -> f64 {
+        let rest = self.mesh.rest_volumes();
+        (0..self.mesh.num_tets())
+            .map(|e| self.mesh.volume_at(e, &self.x) / rest[e])
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Random displacements of `n` vertices, each coordinate in `[-amplitude, amplitude]`.
+fn displacements(n: usize, amplitude: f64) -> impl Strategy<Value = Vec<isochor_mesh::Vec3>> {
+    proptest::collection::vec(
+        proptest::array::uniform3(-amplitude..amplitude).prop_map(isochor_mesh::Vec3::from),
+        n,
+    )
+}
+
+/// `mesh` with every vertex displaced by up to `amplitude` per coordinate, keeping only
+/// configurations whose smallest volume ratio is at least `j_min`.
+fn deform(
+    mesh: isochor_mesh::TetMesh,
+    amplitude: f64,
+    j_min: f64,
+) -> impl Strategy<Value = Deformed> {
+    displacements(mesh.num_vertices(), amplitude).prop_filter_map(
+        "a tet is too compressed or inverted",
+        move |u| {
+            let x = mesh.positions().iter().zip(&u).map(|(p, d)| p + d).collect();
+            let deformed = Deformed {
+                mesh: mesh.clone(),
+                x,
+            };
+            (deformed.min_volume_ratio() >= j_min).then_some(deformed)
+        },
+    )
+}
+
+/// Two tets sharing the face `(0, 1, 2)` (apexes 3 above and 4 below), rest vertices
+/// jittered by up to `rest_jitter` per coordinate around a unit-size reference, deformed by
+/// up to `amplitude` per coordinate, with every volume ratio at least `j_min`.
+pub fn two_tets(rest_jitter: f64, amplitude: f64, j_min: f64) -> impl Strategy<Value = Deformed> {
+    let reference = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.3, 0.3, 1.0],
+        [0.2, 0.3, -0.8],
+    ];
+    displacements(5, rest_jitter)
+        .prop_filter_map("jittered rest mesh must be valid", move |jitter| {
+            let positions = reference
+                .iter()
+                .zip(&jitter)
+                .map(|(p, d)| isochor_mesh::Vec3::from(*p) + d)
+                .collect();
+            isochor_mesh::TetMesh::new(positions, vec![[0, 1, 2, 3], [0, 2, 1, 4]]).ok()
+        })
+        .prop_flat_map(move |mesh| deform(mesh, amplitude, j_min))
+}
+
+/// The unit cube split by [`isochor_mesh::generate::box_grid`] into `cells`, deformed by up
+/// to `amplitude` per coordinate, with every volume ratio at least `j_min`.
+pub fn deformed_box(cells: [usize; 3], amplitude: f64, j_min: f64) -> impl Strategy<Value = Deformed> {
+    let mesh = isochor_mesh::generate::box_grid(
+        isochor_mesh::Vec3::zeros(),
+        isochor_mesh::Vec3::repeat(1.0),
+        cells,
+    );
+    proptest::strategy::Just(mesh).prop_filter_map("box cells must be valid", Result::ok)
+        .prop_flat_map(move |mesh| deform(mesh, amplitude, j_min))
 }

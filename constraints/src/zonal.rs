@@ -1,0 +1,319 @@
+//! Zonal volume constraints: one constraint per zone of tets, zones possibly overlapping
+//! (eq. 6-9 of Sheen et al. 2021).
+
+use crate::tets::{check_len, inverse_bulk_modulus, MeasuredTets};
+use crate::volume::tet_volume;
+use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
+use isochor_mesh::{TetMesh, Vec3, Zones};
+use rayon::prelude::*;
+
+/// One constraint per zone `j`: `c_j = sum_{e in zone j} (v_e - V_e)` (eq. 6), hard by
+/// default (`C = 0`, eq. 7-8), optionally compliant ([`ZonalConstraints::with_bulk_modulus`]).
+///
+/// Zones may overlap; a tet in several zones contributes to each of their rows. The
+/// Jacobian pattern holds, for every zone in order and every tet of the zone in order, 12
+/// entries (the zone's row over the tet's DOFs): zone rows are dense over the zone. The
+/// geometric stiffness holds one 12x12 block per tet that belongs to any zone, weighted by
+/// the sum of the multipliers of the zones that contain it (eq. 9 differentiated twice).
+#[derive(Debug, Clone)]
+pub struct ZonalConstraints {
+    tets: MeasuredTets,
+    zones: Vec<Vec<usize>>,
+    rest_zone_volumes: Vec<f64>,
+    compliance: Vec<f64>,
+    /// `(zone, tet)` of every Jacobian block.
+    entries: Vec<(usize, usize)>,
+    /// Tets in at least one zone, ascending: one geometric stiffness block each.
+    covered: Vec<usize>,
+    /// The zones containing each tet of the mesh (empty outside every zone).
+    zones_of_tet: Vec<Vec<usize>>,
+    /// Outward boundary triangles of every zone.
+    boundary_faces: Vec<Vec<[usize; 3]>>,
+}
+
+impl ZonalConstraints {
+    /// Hard zonal constraints on `mesh`, one per zone of `zones`.
+    ///
+    /// Errors: [`ConstraintError::InvalidParameter`] if there are no zones,
+    /// [`ConstraintError::InvalidZone`] for an empty zone or a tet index outside the mesh.
+    pub fn new(mesh: &TetMesh, zones: &Zones) -> Result<Self, ConstraintError> {
+        if zones.is_empty() {
+            return Err(ConstraintError::InvalidParameter {
+                name: "zones",
+                value: 0.0,
+                reason: "at least one zone is needed",
+            });
+        }
+        let num_tets = mesh.num_tets();
+        let mut zones_of_tet = vec![Vec::new(); num_tets];
+        let mut entries = Vec::new();
+        for (z, zone) in zones.iter().enumerate() {
+            if zone.is_empty() {
+                return Err(ConstraintError::InvalidZone {
+                    zone: z,
+                    reason: "the zone has no tets".into(),
+                });
+            }
+            for &e in zone {
+                if e >= num_tets {
+                    return Err(ConstraintError::InvalidZone {
+                        zone: z,
+                        reason: format!("tet {e} is not in the mesh ({num_tets} tets)"),
+                    });
+                }
+                zones_of_tet[e].push(z);
+                entries.push((z, e));
+            }
+        }
+        let zones: Vec<Vec<usize>> = zones.iter().map(<[usize]>::to_vec).collect();
+        let rest_zone_volumes = zones
+            .iter()
+            .map(|zone| zone.iter().map(|&e| mesh.rest_volumes()[e]).sum())
+            .collect();
+        let boundary_faces = zones
+            .iter()
+            .map(|zone| boundary_faces(mesh.tets(), zone))
+            .collect();
+        Ok(ZonalConstraints {
+            tets: MeasuredTets::new(mesh, Measure::Linear),
+            compliance: vec![0.0; zones.len()],
+            covered: (0..num_tets)
+                .filter(|&e| !zones_of_tet[e].is_empty())
+                .collect(),
+            zones,
+            rest_zone_volumes,
+            entries,
+            zones_of_tet,
+            boundary_faces,
+        })
+    }
+
+    /// Makes the constraints compliant with bulk modulus `kappa`: `C_j = V_j / kappa` with
+    /// `V_j` the rest volume of zone `j` (eq. 18 with one constant pressure per zone).
+    /// `f64::INFINITY` keeps them hard.
+    ///
+    /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
+    pub fn with_bulk_modulus(mut self, kappa: f64) -> Result<Self, ConstraintError> {
+        let inverse = inverse_bulk_modulus(kappa)?;
+        self.compliance = self
+            .rest_zone_volumes
+            .iter()
+            .map(|v| v * inverse)
+            .collect();
+        Ok(self)
+    }
+
+    /// Rest volume of every zone.
+    pub fn rest_zone_volumes(&self) -> &[f64] {
+        &self.rest_zone_volumes
+    }
+
+    /// Outward boundary triangles of zone `z`: the faces of its tets not shared by two of
+    /// its tets, oriented by the tet's vertex order so that normals point out of the zone.
+    ///
+    /// Errors: [`ConstraintError::InvalidZone`] if `z` is not a zone.
+    pub fn boundary_faces(&self, z: usize) -> Result<&[[usize; 3]], ConstraintError> {
+        self.boundary_faces
+            .get(z)
+            .map(Vec::as_slice)
+            .ok_or_else(|| no_such_zone(z, self.zones.len()))
+    }
+
+    /// Deformed volume of zone `z` as the sum of its element volumes.
+    ///
+    /// Errors: wrong length of `x`, or `z` not a zone.
+    pub fn zone_volume(&self, z: usize, x: &[Vec3]) -> Result<f64, ConstraintError> {
+        self.tets.check_positions(x)?;
+        let zone = self
+            .zones
+            .get(z)
+            .ok_or_else(|| no_such_zone(z, self.zones.len()))?;
+        Ok(zone
+            .iter()
+            .map(|&e| tet_volume(&self.tets.tet(e).map(|v| x[v])))
+            .sum())
+    }
+
+    /// Deformed volume of zone `z` from its boundary only (divergence theorem, the
+    /// optimization noted after eq. 8): `sum over boundary faces of x0 . (x1 x x2) / 6`.
+    /// Equal to [`ZonalConstraints::zone_volume`] up to rounding for any `x`.
+    ///
+    /// Errors: wrong length of `x`, or `z` not a zone.
+    pub fn zone_boundary_volume(&self, z: usize, x: &[Vec3]) -> Result<f64, ConstraintError> {
+        self.tets.check_positions(x)?;
+        Ok(self
+            .boundary_faces(z)?
+            .iter()
+            .map(|&[a, b, c]| x[a].dot(&x[b].cross(&x[c])) / 6.0)
+            .sum())
+    }
+
+    /// The sum of the multipliers of the zones containing tet `e`.
+    fn tet_multiplier(&self, e: usize, multipliers: &[f64]) -> f64 {
+        self.zones_of_tet[e].iter().map(|&z| multipliers[z]).sum()
+    }
+}
+
+impl ConstraintSet for ZonalConstraints {
+    fn name(&self) -> &'static str {
+        "zonal"
+    }
+
+    fn num_constraints(&self) -> usize {
+        self.zones.len()
+    }
+
+    fn values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
+        self.tets.check_positions(x)?;
+        check_len("constraint values", self.zones.len(), out.len())?;
+        let mut m = vec![0.0; self.tets.len()];
+        self.tets.fill_values(x, &mut m)?;
+        out.par_iter_mut()
+            .zip(self.zones.par_iter())
+            .for_each(|(c, zone)| *c = zone.iter().map(|&e| m[e]).sum());
+        Ok(())
+    }
+
+    fn jacobian_pattern(&self) -> Vec<(usize, usize)> {
+        self.entries
+            .iter()
+            .flat_map(|&(z, e)| self.tets.dofs(e).map(|dof| (z, dof)))
+            .collect()
+    }
+
+    fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
+        self.tets.check_positions(x)?;
+        self.tets
+            .fill_gradients(x, out, self.entries.len(), 1, 1.0, |b| self.entries[b].1)
+    }
+
+    fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {
+        self.tets.hessian_pattern(self.covered.iter().copied())
+    }
+
+    fn geometric_stiffness_values(
+        &self,
+        x: &[Vec3],
+        multipliers: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), ConstraintError> {
+        self.tets.check_positions(x)?;
+        check_len("multipliers", self.zones.len(), multipliers.len())?;
+        self.tets.fill_hessians(
+            x,
+            out,
+            self.covered.len(),
+            |b| self.covered[b],
+            |e| self.tet_multiplier(e, multipliers),
+        )
+    }
+
+    fn compliance(&self) -> Compliance {
+        Compliance::Diagonal(self.compliance.clone())
+    }
+
+    /// The coarse-scale pressure of Sheen et al. 2021, sec. 8.2: the sum of the multipliers
+    /// of the zones containing the tet (zero outside every zone). Their per-tet pressure adds
+    /// the fine-scale volumetric stress `lambda U'(J)` of the compression penalty; the
+    /// penalty belongs to the material model, so the solver adds that term, not this set.
+    fn tet_pressures(
+        &self,
+        x: &[Vec3],
+        multipliers: &[f64],
+    ) -> Vec<f64> {
+        if self.tets.check_positions(x).is_err() {
+            return Vec::new();
+        }
+        if multipliers.len() != self.zones.len() {
+            return Vec::new();
+        }
+        (0..self.tets.len())
+            .map(|e| self.tet_multiplier(e, multipliers))
+            .collect()
+    }
+}
+
+fn no_such_zone(z: usize, zones: usize) -> ConstraintError {
+    ConstraintError::InvalidZone {
+        zone: z,
+        reason: format!("no such zone ({zones} zones)"),
+    }
+}
+
+/// Faces of the tets of `zone` that are not shared by two of them, oriented outward.
+///
+/// For a positively oriented tet `[a, b, c, d]` the outward faces are `[b, c, d]`,
+/// `[a, d, c]`, `[a, b, d]` and `[a, c, b]`. Faces are matched by their sorted vertex
+/// triple; the result is sorted by that triple.
+fn boundary_faces(tets: &[[usize; 4]], zone: &[usize]) -> Vec<[usize; 3]> {
+    let mut faces: Vec<([usize; 3], [usize; 3])> = zone
+        .iter()
+        .flat_map(|&e| {
+            let [a, b, c, d] = tets[e];
+            [[b, c, d], [a, d, c], [a, b, d], [a, c, b]]
+        })
+        .map(|face| {
+            let mut key = face;
+            key.sort_unstable();
+            (key, face)
+        })
+        .collect();
+    faces.sort_unstable();
+    faces
+        .chunk_by(|f, g| f.0 == g.0)
+        .filter(|run| run.len() == 1)
+        .map(|run| run[0].1)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tets::test_meshes::{moved, two_tets};
+
+    #[test]
+    fn boundary_of_two_tets_and_its_volume() {
+        let mesh = two_tets();
+        let zones = Zones::from_sets(vec![vec![0, 1], vec![1]]);
+        let set = ZonalConstraints::new(&mesh, &zones).unwrap();
+        assert_eq!(set.boundary_faces(0).unwrap().len(), 6);
+        assert_eq!(set.boundary_faces(1).unwrap().len(), 4);
+        let x = moved(&mesh, 2, Vec3::new(0.2, 0.1, -0.3));
+        for z in 0..2 {
+            let by_tets = set.zone_volume(z, &x).unwrap();
+            let by_faces = set.zone_boundary_volume(z, &x).unwrap();
+            assert!((by_tets - by_faces).abs() < 1e-15, "zone {z}");
+        }
+        let mut c = [1.0; 2];
+        set.values(mesh.positions(), &mut c).unwrap();
+        assert_eq!(c, [0.0, 0.0]);
+        assert_eq!(set.tet_pressures(&x, &[2.0, 5.0]), vec![2.0, 7.0]);
+        assert_eq!(set.compliance(), Compliance::Diagonal(vec![0.0, 0.0]));
+        let soft = set.with_bulk_modulus(2.0).unwrap();
+        let v = mesh.rest_volumes();
+        assert_eq!(
+            soft.compliance(),
+            Compliance::Diagonal(vec![(v[0] + v[1]) / 2.0, v[1] / 2.0])
+        );
+    }
+
+    #[test]
+    fn bad_zones_are_errors() {
+        let mesh = two_tets();
+        let err = |sets: Vec<Vec<usize>>| ZonalConstraints::new(&mesh, &Zones::from_sets(sets));
+        assert!(matches!(
+            err(vec![]),
+            Err(ConstraintError::InvalidParameter { name: "zones", .. })
+        ));
+        assert!(matches!(
+            err(vec![vec![0], vec![]]),
+            Err(ConstraintError::InvalidZone { zone: 1, .. })
+        ));
+        let e = err(vec![vec![0, 2]]).unwrap_err();
+        assert!(e.to_string().contains("tet 2"), "{e}");
+        let set = err(vec![vec![0]]).unwrap();
+        assert!(set.boundary_faces(1).is_err());
+        assert!(set.zone_volume(0, &mesh.positions()[..3]).is_err());
+        assert!(set.with_bulk_modulus(-1.0).is_err());
+    }
+}

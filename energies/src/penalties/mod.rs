@@ -1,0 +1,10 @@
+//! Volumetric penalties `U(J)`, each scaled by `lambda` where it is used
+//! (see [`Composed`](crate::Composed)).
+
+mod log;
+mod quadratic;
+mod sheen;
+
+pub use log::LogPenalty;
+pub use quadratic::QuadraticPenalty;
+pub use sheen::SheenPenalty;

@@ -1,0 +1,59 @@
+//! Solid cylinders and pucks: a square grid mapped onto the disk, extruded along z.
+
+use super::lattice::Lattice;
+use super::{cells_along, positive, resolution};
+use crate::{MeshError, TetMesh, Vec3};
+
+/// Largest accepted `res` and number of layers.
+const MAX_RES: usize = 1024;
+
+/// The elliptical-grid map of the square `[-1, 1]^2` onto the unit disk,
+/// `(x, y) -> (x sqrt(1 - y^2/2), y sqrt(1 - x^2/2))` (Fong, "Analytical methods for squaring
+/// the disc", 2014): smooth inside, and the square's boundary lands exactly on the circle.
+pub(crate) fn square_to_disk(x: f64, y: f64) -> (f64, f64) {
+    (x * (1.0 - 0.5 * y * y).sqrt(), y * (1.0 - 0.5 * x * x).sqrt())
+}
+
+/// A solid cylinder of `radius` with axis z from 0 to `height`.
+///
+/// The cross-section is a `2 res x 2 res` square grid mapped onto the disk (cells about
+/// `radius / res` wide), with the Kuhn split mirrored in each quadrant so that the diagonals
+/// point away from the axis; there are `round(res height / radius)` (at least 1) layers, so
+/// `24 res^2 layers` tets (res 4 with height = 2 radius: 3072).
+pub fn cylinder(radius: f64, height: f64, res: usize) -> Result<TetMesh, MeshError> {
+    let radius = positive("radius", radius)?;
+    let height = positive("height", height)?;
+    let res = resolution(res, MAX_RES)?;
+    let layers = cells_along("height", height, radius / res as f64, MAX_RES)?;
+    extruded_disk(radius, height, res, layers)
+}
+
+/// A puck (a short cylinder that is indented from the top, Sheen et al. 2021, Figs. 6 and 9):
+/// the same mesh as [`cylinder`], with at least `res` layers through its height so that the
+/// compression under an indenter is resolved: `24 res^2 max(res, round(res height / radius))`
+/// tets.
+pub fn puck(radius: f64, height: f64, res: usize) -> Result<TetMesh, MeshError> {
+    let radius = positive("radius", radius)?;
+    let height = positive("height", height)?;
+    let res = resolution(res, MAX_RES)?;
+    let layers = cells_along("height", height, radius / res as f64, MAX_RES)?.max(res);
+    extruded_disk(radius, height, res, layers)
+}
+
+fn extruded_disk(radius: f64, height: f64, res: usize, layers: usize) -> Result<TetMesh, MeshError> {
+    let lattice = Lattice {
+        cells: [2 * res, 2 * res, layers],
+        periodic: [false; 3],
+        mirror: [Some(res), Some(res), None],
+    };
+    let r = res as f64;
+    let positions = lattice
+        .points()
+        .into_iter()
+        .map(|[i, j, k]| {
+            let (u, v) = square_to_disk((i as f64 - r) / r, (j as f64 - r) / r);
+            Vec3::new(radius * u, radius * v, height * k as f64 / layers as f64)
+        })
+        .collect();
+    TetMesh::new(positions, lattice.tets())
+}

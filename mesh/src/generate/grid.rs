@@ -1,0 +1,61 @@
+//! Structured box grid split into tets.
+
+use super::lattice::Lattice;
+use crate::{MeshError, TetMesh, Vec3};
+
+/// A box `[min, max]` with `cells = [nx, ny, nz]` hexes, each split into the 6 tets that
+/// share its diagonal from corner `(i, j, k)` to `(i+1, j+1, k+1)` (Kuhn's split):
+/// `6 nx ny nz` tets.
+///
+/// Vertex `(i, j, k)` has index `i + (nx + 1) * (j + (ny + 1) * k)`.
+pub fn box_grid(min: Vec3, max: Vec3, cells: [usize; 3]) -> Result<TetMesh, MeshError> {
+    let names = ["nx", "ny", "nz"];
+    for (axis, &n) in cells.iter().enumerate() {
+        if n == 0 {
+            return Err(MeshError::parameter(names[axis], n, "at least one cell is needed"));
+        }
+        if !(min[axis].is_finite() && max[axis].is_finite() && max[axis] > min[axis]) {
+            return Err(MeshError::parameter(
+                "box",
+                format!("[{}, {}]", min[axis], max[axis]),
+                format!("axis {axis} must have finite bounds with max > min"),
+            ));
+        }
+    }
+    let lattice = Lattice {
+        cells,
+        periodic: [false; 3],
+        mirror: [None; 3],
+    };
+    let positions = lattice
+        .points()
+        .into_iter()
+        .map(|p| {
+            let t = Vec3::from_fn(|a, _| p[a] as f64 / cells[a] as f64);
+            min + (max - min).component_mul(&t)
+        })
+        .collect();
+    TetMesh::new(positions, lattice.tets())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_volume_is_exact_and_tets_positive() {
+        let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [8, 2, 2]).unwrap();
+        assert_eq!(mesh.reoriented(), 0);
+        assert_eq!(mesh.num_tets(), 6 * 32);
+        assert_eq!(mesh.num_vertices(), 9 * 3 * 3);
+        let exact = 0.2 * 0.05 * 0.05;
+        assert!((mesh.rest_volume() - exact).abs() < 1e-15 * exact * 100.0);
+        assert_eq!(mesh.positions()[1 + 9 * (2 + 3)], Vec3::new(0.025, 0.05, 0.025));
+    }
+
+    #[test]
+    fn zero_cells_is_an_error() {
+        assert!(box_grid(Vec3::zeros(), Vec3::repeat(1.0), [0, 1, 1]).is_err());
+        assert!(box_grid(Vec3::zeros(), Vec3::new(1.0, 0.0, 1.0), [1, 1, 1]).is_err());
+    }
+}

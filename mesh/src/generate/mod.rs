@@ -1,0 +1,53 @@
+//! Mesh generators. Every generator takes a resolution, returns positively oriented tets
+//! (the constructor re-orients none) and places boundary vertices on the analytic surface.
+//!
+//! | generator | tets |
+//! |---|---|
+//! | [`box_grid`] `[nx, ny, nz]` | `6 nx ny nz` |
+//! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) |
+//! | [`tube`] `res` | `6 res n_theta n_z` (cells about `(r_o - r_i) / res` wide) |
+//! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) |
+
+mod ball;
+mod cylinder;
+mod grid;
+mod lattice;
+mod tube;
+
+pub use ball::ball;
+pub use cylinder::{cylinder, puck};
+pub use grid::box_grid;
+pub use tube::{tube, TubeMesh};
+
+use crate::MeshError;
+
+/// `value` if it is finite and positive, else an [`MeshError::InvalidParameter`] naming it.
+fn positive(name: &'static str, value: f64) -> Result<f64, MeshError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(MeshError::parameter(name, value, "must be finite and > 0"))
+    }
+}
+
+/// `res` if it is at least 1 and at most `max` (the bound keeps tet counts allocatable).
+fn resolution(res: usize, max: usize) -> Result<usize, MeshError> {
+    if (1..=max).contains(&res) {
+        Ok(res)
+    } else {
+        Err(MeshError::parameter("res", res, format!("must be in 1..={max}")))
+    }
+}
+
+/// Cells of size about `cell` along a length `length`: at least one, at most `max`.
+fn cells_along(name: &'static str, length: f64, cell: f64, max: usize) -> Result<usize, MeshError> {
+    let n = (length / cell).round().max(1.0);
+    if n > max as f64 {
+        return Err(MeshError::parameter(
+            name,
+            n,
+            format!("the aspect ratio needs more than {max} cells along this axis"),
+        ));
+    }
+    Ok(n as usize)
+}

@@ -1,0 +1,367 @@
+//! `--set KEY=VALUE`: overrides applied to the parsed TOML tree before the scene is
+//! deserialized again, so a wrong type is reported against its key.
+//!
+//! `KEY` is a dotted path (`material.nu`, `stepping.steps`, `dirichlet.1.motion.rotate.degrees`,
+//! array entries by index) or a flat parameter name from [`FLAT_KEYS`] (`nu`, `E`, `res`,
+//! `steps`, `method`, ...). Any key of the scene's `[mesh]` table (`res`, `radius`, ...) is a
+//! flat name too. Two names are special: `mesh=PATH` replaces the generated mesh by a mesh
+//! file, and `zones=K-ring` is shorthand for `zones.kind = "k-ring"`, `zones.k = K`.
+//! `VALUE` is read as a TOML value (`0.4999`, `4`, `true`, `[0, -9.8, 0]`, `"text"`) and
+//! otherwise taken as a bare string (`mixed-p1`, `meshes/tube.msh`).
+
+use crate::SceneError;
+use toml::Value;
+
+/// Flat parameter names and the dotted keys they set.
+pub const FLAT_KEYS: &[(&str, &str)] = &[
+    ("method", "method"),
+    ("nu", "material.nu"),
+    ("E", "material.young"),
+    ("young", "material.young"),
+    ("mu", "material.mu"),
+    ("rho", "material.rho"),
+    ("density", "material.rho"),
+    ("lambda", "material.lambda"),
+    ("beta", "material.beta"),
+    ("epsilon", "material.epsilon"),
+    ("kappa", "material.kappa"),
+    ("zonal_energy", "material.zonal_energy"),
+    ("dual_base_nu", "material.dual_base_nu"),
+    ("epidermis", "material.epidermis"),
+    ("epidermis_young", "material.epidermis_young"),
+    ("epidermis_nu", "material.epidermis_nu"),
+    ("epidermis_gamma", "material.epidermis_gamma"),
+    ("gravity", "loads.gravity"),
+    ("steps", "stepping.steps"),
+    ("frames", "stepping.frames"),
+    ("dt", "stepping.dt"),
+    ("max_iterations", "solver.max_iterations"),
+    ("force_tolerance", "solver.force_tolerance"),
+    ("constraint_tolerance", "solver.constraint_tolerance"),
+    ("max_backtracks", "solver.max_backtracks"),
+    ("max_dual_iterations", "solver.max_dual_iterations"),
+    ("project_hessians", "solver.project_hessians"),
+    ("linear", "solver.linear"),
+    ("linear_tolerance", "solver.linear_tolerance"),
+    ("linear_max_iterations", "solver.linear_max_iterations"),
+    ("zones", "zones.kind"),
+    ("k", "zones.k"),
+    ("every", "output.every"),
+    ("vtu", "output.vtu"),
+    ("plots", "output.plots"),
+];
+
+/// One `KEY=VALUE` override.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Override {
+    /// The key as given.
+    pub key: String,
+    /// The value, parsed as TOML or taken as a string.
+    pub value: Value,
+}
+
+impl Override {
+    /// Parses `KEY=VALUE`.
+    pub fn parse(assignment: &str) -> Result<Override, SceneError> {
+        let (key, raw) = assignment.split_once('=').ok_or_else(|| SceneError::Override {
+            key: assignment.to_string(),
+            message: "expected KEY=VALUE (e.g. nu=0.4999, res=4, method=mixed-p1)".into(),
+        })?;
+        let key = key.trim();
+        check_key_syntax(key).map_err(|message| SceneError::Override {
+            key: key.to_string(),
+            message,
+        })?;
+        Ok(Override {
+            key: key.to_string(),
+            value: parse_value(raw.trim()),
+        })
+    }
+
+    /// An override from a key and an already parsed value.
+    pub fn new(key: impl Into<String>, value: Value) -> Override {
+        Override {
+            key: key.into(),
+            value,
+        }
+    }
+
+    /// `KEY=VALUE` with the value in TOML syntax (strings unquoted).
+    pub fn display_value(&self) -> String {
+        match &self.value {
+            Value::String(s) => s.clone(),
+            v => v.to_string(),
+        }
+    }
+}
+
+/// A value as TOML (number, bool, array, quoted string), or else the raw text as a string.
+pub fn parse_value(raw: &str) -> Value {
+    toml::from_str::<toml::Table>(&format!("v = {raw}"))
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| Value::String(raw.to_string()))
+}
+
+/// Checks that a key is a non-empty dotted path of non-empty segments.
+pub fn check_key_syntax(key: &str) -> Result<(), String> {
+    if key.is_empty() || key.split('.').any(str::is_empty) {
+        return Err(format!(
+            "'{key}' is not a key: use a parameter name ({}) or a dotted key like material.nu",
+            flat_names().join(", ")
+        ));
+    }
+    Ok(())
+}
+
+/// The flat parameter names, for error messages.
+pub fn flat_names() -> Vec<&'static str> {
+    let mut names: Vec<&str> = FLAT_KEYS.iter().map(|(n, _)| *n).collect();
+    names.push("mesh");
+    names.push("res");
+    names.sort_unstable();
+    names.dedup();
+    names
+}
+
+/// Applies overrides in order to a scene's TOML tree. A relative `mesh=PATH` is resolved
+/// against the working directory.
+pub fn apply_all(tree: &mut Value, overrides: &[Override]) -> Result<(), SceneError> {
+    overrides.iter().try_for_each(|o| apply(tree, o))
+}
+
+/// Applies one override.
+pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
+    let err = |message: String| SceneError::Override {
+        key: o.key.clone(),
+        message,
+    };
+    if o.key == "mesh" {
+        let Value::String(path) = &o.value else {
+            return Err(err("expected a mesh file path (.msh, .node, .ele or .vtu)".into()));
+        };
+        let mut table = toml::Table::new();
+        table.insert("generator".into(), Value::String("file".into()));
+        // A path given on the command line is relative to the working directory.
+        let path = std::path::Path::new(path);
+        let path = match std::env::current_dir() {
+            Ok(cwd) if path.is_relative() => cwd.join(path),
+            _ => path.to_path_buf(),
+        };
+        table.insert("path".into(), Value::String(path.display().to_string()));
+        root(tree)?.insert("mesh".into(), Value::Table(table));
+        return Ok(());
+    }
+    if o.key == "zones" {
+        if let Value::String(s) = &o.value {
+            if let Some(k) = s.strip_suffix("-ring").and_then(|k| k.parse::<i64>().ok()) {
+                set_path(tree, "zones.kind", Value::String("k-ring".into())).map_err(err)?;
+                return set_path(tree, "zones.k", Value::Integer(k)).map_err(err);
+            }
+        }
+    }
+    let path = resolve(tree, &o.key).map_err(err)?;
+    // Young's modulus and the shear modulus are alternatives: setting one drops the other.
+    let drop = match path.as_str() {
+        "material.young" => Some("mu"),
+        "material.mu" => Some("young"),
+        _ => None,
+    };
+    if let Some(other) = drop {
+        if let Some(Value::Table(m)) = root(tree)?.get_mut("material") {
+            m.remove(other);
+        }
+    }
+    set_path(tree, &path, o.value.clone()).map_err(err)
+}
+
+fn root(tree: &mut Value) -> Result<&mut toml::Table, SceneError> {
+    tree.as_table_mut().ok_or_else(|| SceneError::Override {
+        key: String::new(),
+        message: "the scene is not a TOML table".into(),
+    })
+}
+
+/// The dotted key a (possibly flat) key stands for.
+fn resolve(tree: &Value, key: &str) -> Result<String, String> {
+    if key.contains('.') {
+        return Ok(key.to_string());
+    }
+    if let Some((_, path)) = FLAT_KEYS.iter().find(|(n, _)| *n == key) {
+        return Ok(path.to_string());
+    }
+    if let Some(mesh) = tree.get("mesh").and_then(Value::as_table) {
+        if mesh.contains_key(key) && key != "generator" {
+            return Ok(format!("mesh.{key}"));
+        }
+        if key == "res" {
+            return Err(format!(
+                "this scene's mesh ({}) has no resolution: res applies to generated meshes",
+                mesh.get("generator").and_then(Value::as_str).unwrap_or("?")
+            ));
+        }
+    }
+    if tree.get(key).is_some() {
+        return Ok(key.to_string());
+    }
+    let mesh_keys = tree
+        .get("mesh")
+        .and_then(Value::as_table)
+        .map(|m| m.keys().filter(|k| *k != "generator").cloned().collect::<Vec<_>>())
+        .unwrap_or_default();
+    let mut valid: Vec<String> = flat_names().iter().map(|s| s.to_string()).collect();
+    valid.extend(mesh_keys);
+    valid.sort();
+    valid.dedup();
+    Err(format!(
+        "unknown parameter '{key}' (valid: {}; or a dotted key such as material.nu or mesh.radius)",
+        valid.join(", ")
+    ))
+}
+
+/// Sets `value` at a dotted path, creating missing tables; array entries are addressed by
+/// index and must exist.
+fn set_path(tree: &mut Value, path: &str, value: Value) -> Result<(), String> {
+    let segments: Vec<&str> = path.split('.').collect();
+    let mut node = tree;
+    for (i, seg) in segments.iter().enumerate() {
+        let last = i + 1 == segments.len();
+        let here = segments[..i].join(".");
+        node = match node {
+            Value::Table(t) => {
+                if last {
+                    t.insert(seg.to_string(), value);
+                    return Ok(());
+                }
+                t.entry(seg.to_string())
+                    .or_insert_with(|| Value::Table(toml::Table::new()))
+            }
+            Value::Array(a) => {
+                let index: usize = seg.parse().map_err(|_| {
+                    format!("'{here}' is a list: address its entries by index (0..{})", a.len())
+                })?;
+                let len = a.len();
+                let slot = a
+                    .get_mut(index)
+                    .ok_or_else(|| format!("'{here}' has {len} entries, no index {index}"))?;
+                if last {
+                    *slot = value;
+                    return Ok(());
+                }
+                slot
+            }
+            other => {
+                return Err(format!(
+                    "'{here}' is a {} value, not a table, so it has no key '{seg}'",
+                    other.type_str()
+                ))
+            }
+        };
+    }
+    unreachable!("a path has at least one segment")
+}
+
+/// Splits `KEY=V1,V2,...` (commas inside brackets do not split).
+pub fn parse_sweep(spec: &str) -> Result<(String, Vec<Value>), SceneError> {
+    let (key, list) = spec.split_once('=').ok_or_else(|| SceneError::Override {
+        key: spec.to_string(),
+        message: "expected KEY=V1,V2,... (e.g. nu=0.49,0.499,0.4999)".into(),
+    })?;
+    let mut values = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    for (i, c) in list.char_indices() {
+        match c {
+            '[' | '{' => depth += 1,
+            ']' | '}' => depth -= 1,
+            ',' if depth == 0 => {
+                values.push(parse_value(list[start..i].trim()));
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    values.push(parse_value(list[start..].trim()));
+    if values.iter().any(|v| v.as_str() == Some("")) {
+        return Err(SceneError::Override {
+            key: key.to_string(),
+            message: "empty value in the sweep list".into(),
+        });
+    }
+    Ok((key.trim().to_string(), values))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tree() -> Value {
+        toml::from_str(
+            r#"
+            method = "standard"
+            [mesh]
+            generator = "box"
+            res = 2
+            [material]
+            young = 1.0
+            nu = 0.3
+            [[dirichlet]]
+            selection = "a"
+            "#,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn values_parse_as_toml_or_strings() {
+        assert_eq!(parse_value("4"), Value::Integer(4));
+        assert_eq!(parse_value("0.4999"), Value::Float(0.4999));
+        assert_eq!(parse_value("true"), Value::Boolean(true));
+        assert_eq!(parse_value("mixed-p1"), Value::String("mixed-p1".into()));
+        assert_eq!(parse_value("a/b.msh"), Value::String("a/b.msh".into()));
+        assert!(matches!(parse_value("[0, -9.8, 0]"), Value::Array(a) if a.len() == 3));
+    }
+
+    #[test]
+    fn flat_and_dotted_keys() {
+        let mut t = tree();
+        apply(&mut t, &Override::parse("nu=0.49").unwrap()).unwrap();
+        apply(&mut t, &Override::parse("res=4").unwrap()).unwrap();
+        apply(&mut t, &Override::parse("stepping.steps=3").unwrap()).unwrap();
+        apply(&mut t, &Override::parse("dirichlet.0.axes=z").unwrap()).unwrap();
+        apply(&mut t, &Override::parse("mu=5").unwrap()).unwrap();
+        assert_eq!(t["material"]["nu"].as_float(), Some(0.49));
+        assert_eq!(t["mesh"]["res"].as_integer(), Some(4));
+        assert_eq!(t["stepping"]["steps"].as_integer(), Some(3));
+        assert_eq!(t["dirichlet"][0]["axes"].as_str(), Some("z"));
+        assert!(t["material"].get("young").is_none());
+        apply(&mut t, &Override::parse("zones=2-ring").unwrap()).unwrap();
+        assert_eq!(t["zones"]["kind"].as_str(), Some("k-ring"));
+        assert_eq!(t["zones"]["k"].as_integer(), Some(2));
+    }
+
+    #[test]
+    fn bad_keys_are_named() {
+        let mut t = tree();
+        let e = apply(&mut t, &Override::parse("nuu=0.3").unwrap()).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains("nuu") && msg.contains("valid:") && msg.contains("nu,"), "{msg}");
+        let e = apply(&mut t, &Override::parse("dirichlet.3.axes=z").unwrap()).unwrap_err();
+        assert!(e.to_string().contains("no index 3"), "{e}");
+        assert!(Override::parse("nu").is_err());
+        assert!(Override::parse("a..b=1").is_err());
+        apply(&mut t, &Override::parse("mesh=foo.msh").unwrap()).unwrap();
+        let e = apply(&mut t, &Override::parse("res=2").unwrap()).unwrap_err();
+        assert!(e.to_string().contains("file"), "{e}");
+    }
+
+    #[test]
+    fn sweeps_split_on_top_level_commas() {
+        let (k, v) = parse_sweep("nu=0.49,0.499").unwrap();
+        assert_eq!(k, "nu");
+        assert_eq!(v, vec![Value::Float(0.49), Value::Float(0.499)]);
+        let (_, v) = parse_sweep("gravity=[0,0,-1],[0,0,-2]").unwrap();
+        assert_eq!(v.len(), 2);
+        assert!(parse_sweep("nu").is_err());
+        assert!(parse_sweep("nu=0.4,").is_err());
+    }
+}

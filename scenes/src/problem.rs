@@ -1,0 +1,277 @@
+//! From a scene to what the solver takes: the mesh, an [`isochor_solvers::Problem`] holding
+//! only the terms the scene names, the [`Stepping`] and the [`Settings`].
+
+use crate::scene::{
+    KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, Scene, SolverSpec, SteppingSpec, ZoneKind,
+    ZonalEnergyName,
+};
+use crate::selection::Selections;
+use crate::SceneError;
+use isochor_mesh::{generate, TetMesh, Vec3, Zones};
+use isochor_solvers::{
+    Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Problem, Settings, Stepping,
+    ZonalEnergy,
+};
+use std::path::Path;
+
+/// A scene made concrete: everything a run needs.
+#[derive(Debug, Clone)]
+pub struct Built {
+    /// The problem (mesh, method, material, zones, conditions, loads).
+    pub problem: Problem,
+    /// Quasi-static steps or implicit Euler frames.
+    pub stepping: Stepping,
+    /// Newton limits and tolerances.
+    pub settings: Settings,
+}
+
+/// Builds the mesh, problem, stepping and settings of a scene.
+pub fn build(scene: &Scene) -> Result<Built, SceneError> {
+    let mesh = build_mesh(&scene.mesh)?;
+    let material = build_material(&scene.material)?;
+    let selections = Selections::new(&mesh, &scene.selections)?;
+    let dirichlet = scene
+        .dirichlet
+        .iter()
+        .map(|d| {
+            Ok(Dirichlet {
+                vertices: selections.vertices(&d.selection)?,
+                axes: ['x', 'y', 'z'].map(|c| d.axes.contains(c)),
+                motion: motion(&d.motion),
+            })
+        })
+        .collect::<Result<Vec<_>, SceneError>>()?;
+    let mut loads = Vec::new();
+    if let Some(g) = scene.loads.gravity {
+        loads.push(Load::Gravity(vec3(g)));
+    }
+    for t in &scene.loads.traction {
+        loads.push(Load::Traction {
+            faces: selections.faces(&t.selection)?,
+            traction: vec3(t.traction),
+        });
+    }
+    for p in &scene.loads.pressure {
+        loads.push(Load::Pressure {
+            faces: selections.faces(&p.selection)?,
+            pressure: p.pressure,
+        });
+    }
+    let method = scene.method();
+    let zones = if method == Method::Zonal {
+        Some(build_zones(scene, &mesh, &selections)?)
+    } else {
+        None
+    };
+    drop(selections);
+    Ok(Built {
+        problem: Problem {
+            mesh,
+            method,
+            material,
+            zones,
+            dirichlet,
+            loads,
+        },
+        stepping: stepping(&scene.stepping),
+        settings: settings(&scene.solver),
+    })
+}
+
+fn vec3(a: [f64; 3]) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+/// Generates or reads the mesh.
+pub fn build_mesh(spec: &MeshSpec) -> Result<TetMesh, SceneError> {
+    let mesh = match spec {
+        MeshSpec::Box { min, max, res, cells, .. } => {
+            generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))?
+        }
+        MeshSpec::Cylinder { radius, height, res } => generate::cylinder(*radius, *height, *res)?,
+        MeshSpec::Puck { radius, height, res } => generate::puck(*radius, *height, *res)?,
+        MeshSpec::Tube {
+            inner_radius,
+            outer_radius,
+            height,
+            res,
+        } => generate::tube(*inner_radius, *outer_radius, *height, *res)?.mesh,
+        MeshSpec::Ball { radius, res, center } => {
+            let ball = generate::ball(*radius, *res)?;
+            let c = vec3(*center);
+            if c == Vec3::zeros() {
+                ball
+            } else {
+                let moved = ball.positions().iter().map(|x| x + c).collect();
+                TetMesh::new(moved, ball.tets().to_vec())?
+            }
+        }
+        MeshSpec::Explicit { positions, tets } => {
+            TetMesh::new(positions.iter().map(|p| vec3(*p)).collect(), tets.clone())?
+        }
+        MeshSpec::File { path } => read_mesh_file(path)?,
+    };
+    Ok(mesh)
+}
+
+/// Reads a mesh file by its extension.
+pub fn read_mesh_file(path: &Path) -> Result<TetMesh, SceneError> {
+    const VALID: &str = ".msh (Gmsh), .node/.ele (TetGen), .vtu";
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if !matches!(ext.as_str(), "msh" | "node" | "ele" | "vtu") {
+        return Err(SceneError::Invalid {
+            origin: path.display().to_string(),
+            key: "mesh.path".into(),
+            message: format!("unknown mesh file type '.{ext}' (valid: {VALID})"),
+        });
+    }
+    let check = |p: &Path| {
+        if p.is_file() {
+            Ok(())
+        } else {
+            Err(SceneError::io(
+                p,
+                std::io::Error::new(std::io::ErrorKind::NotFound, "mesh file not found"),
+            ))
+        }
+    };
+    match ext.as_str() {
+        "node" | "ele" => {
+            check(&path.with_extension("node"))?;
+            check(&path.with_extension("ele"))?;
+        }
+        _ => check(path)?,
+    }
+    crate::meshio::read(path, &ext)
+}
+
+/// Material parameters from a scene's `[material]` table.
+pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
+    let young = match (spec.young, spec.mu) {
+        (Some(e), _) => e,
+        (None, Some(mu)) => 2.0 * mu * (1.0 + spec.nu),
+        (None, None) => {
+            return Err(SceneError::Invalid {
+                origin: "scene".into(),
+                key: "material".into(),
+                message: "give young (E) or mu".into(),
+            })
+        }
+    };
+    let mut m = Material::from_young_poisson(young, spec.nu, spec.rho)?;
+    if let Some(mu) = spec.mu {
+        m.mu = mu;
+    }
+    if let Some(lambda) = spec.lambda {
+        m.zonal_lambda = lambda;
+    }
+    if let Some(beta) = spec.beta {
+        m.beta = beta;
+    }
+    if let Some(epsilon) = spec.epsilon {
+        m.epsilon = epsilon;
+    }
+    if let Some(kappa) = spec.kappa {
+        m.kappa = match kappa {
+            KappaName::Bulk => Kappa::Bulk,
+            KappaName::Lambda => Kappa::Lambda,
+        };
+    }
+    if let Some(energy) = spec.zonal_energy {
+        m.zonal_energy = match energy {
+            ZonalEnergyName::Constrained => ZonalEnergy::Constrained,
+            ZonalEnergyName::Standard => ZonalEnergy::Standard,
+        };
+    }
+    if let Some(nu) = spec.dual_base_nu {
+        m.dual_base_nu = (nu != 0.0).then_some(nu);
+    }
+    if spec.epidermis {
+        m.epidermis = Some(Epidermis {
+            young: spec.epidermis_young.unwrap_or(young),
+            poisson: spec.epidermis_nu.unwrap_or(0.45),
+            gamma: spec.epidermis_gamma.unwrap_or(1.0),
+        });
+    }
+    m.validate()?;
+    Ok(m)
+}
+
+fn motion(spec: &MotionSpec) -> Motion {
+    match spec {
+        MotionSpec::Fixed => Motion::Fixed,
+        MotionSpec::Translate(offset) => Motion::Translate(vec3(*offset)),
+        MotionSpec::Rotate {
+            center,
+            axis,
+            degrees,
+        } => Motion::Rotate {
+            center: vec3(*center),
+            axis: vec3(*axis),
+            angle: degrees.to_radians(),
+        },
+        MotionSpec::Scale { center, factors } => Motion::Scale {
+            center: vec3(*center),
+            factors: vec3(*factors),
+        },
+    }
+}
+
+fn build_zones(scene: &Scene, mesh: &TetMesh, selections: &Selections<'_>) -> Result<Zones, SceneError> {
+    let Some(spec) = &scene.zones else {
+        return Ok(Zones::global(mesh));
+    };
+    Ok(match spec.kind {
+        ZoneKind::Global => Zones::global(mesh),
+        ZoneKind::KRing => Zones::k_ring_cover(mesh, spec.k.unwrap_or(1))?,
+        ZoneKind::Painted => {
+            let mut labels = vec![Vec::new(); mesh.num_vertices()];
+            for (zone, name) in spec.paint.iter().enumerate() {
+                for v in selections.vertices(name)? {
+                    labels[v].push(zone);
+                }
+            }
+            Zones::painted(mesh, &labels)?
+        }
+    })
+}
+
+/// The solver's stepping.
+pub fn stepping(spec: &SteppingSpec) -> Stepping {
+    match *spec {
+        SteppingSpec::QuasiStatic { steps } => Stepping::QuasiStatic { steps },
+        SteppingSpec::Dynamic { dt, frames } => Stepping::ImplicitEuler { dt, frames },
+    }
+}
+
+/// The solver's settings: its defaults, overridden by the scene's `[solver]` table.
+pub fn settings(spec: &SolverSpec) -> Settings {
+    let mut s = Settings::default();
+    if let Some(v) = spec.max_iterations {
+        s.max_iterations = v;
+    }
+    if let Some(v) = spec.force_tolerance {
+        s.force_tolerance = v;
+    }
+    if let Some(v) = spec.constraint_tolerance {
+        s.constraint_tolerance = v;
+    }
+    if let Some(v) = spec.max_backtracks {
+        s.max_backtracks = v;
+    }
+    if let Some(v) = spec.max_dual_iterations {
+        s.max_dual_iterations = v;
+    }
+    if let Some(v) = spec.project_hessians {
+        s.project_hessians = v;
+    }
+    let iterative = spec.linear == Some(LinearName::Iterative)
+        || (spec.linear.is_none() && (spec.linear_tolerance.is_some() || spec.linear_max_iterations.is_some()));
+    if iterative {
+        s.linear = LinearSolver::Iterative {
+            tolerance: spec.linear_tolerance.unwrap_or(1e-8),
+            max_iterations: spec.linear_max_iterations.unwrap_or(1000),
+        };
+    }
+    s
+}

@@ -1,0 +1,702 @@
+//! The scene format: serde structs of a TOML scene file. Every struct denies unknown keys, so a
+//! typo is an error that names the key and lists the valid ones.
+//!
+//! A scene holds what a run needs and nothing derived: the mesh (a generator with its
+//! parameters, or a file), the method, the material, named geometric selections, Dirichlet
+//! conditions and loads on those selections, zones, stepping, solver limits, probes, outputs,
+//! and named variants (sets of `--set` overrides that reproduce a figure's columns).
+
+use crate::SceneError;
+use isochor_solvers::Method;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// A whole scene file.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Short name (the built-in name, or the file stem).
+    pub name: String,
+    /// What the scene reproduces.
+    #[serde(default)]
+    pub description: String,
+    /// The method (see [`Method::ALL`] for the names).
+    pub method: MethodName,
+    /// The mesh.
+    pub mesh: MeshSpec,
+    /// Material parameters.
+    pub material: MaterialSpec,
+    /// Named geometric selections, referenced by boundary conditions, loads and probes.
+    #[serde(default)]
+    pub selections: BTreeMap<String, SelectionSpec>,
+    /// Dirichlet conditions.
+    #[serde(default)]
+    pub dirichlet: Vec<DirichletSpec>,
+    /// External loads.
+    #[serde(default)]
+    pub loads: LoadsSpec,
+    /// Zones of the `zonal` method (one global zone if absent).
+    #[serde(default)]
+    pub zones: Option<ZonesSpec>,
+    /// Quasi-static steps or implicit Euler frames.
+    pub stepping: SteppingSpec,
+    /// Newton limits, tolerances and the linear solver.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Named scalar results measured on the final state.
+    #[serde(default)]
+    pub probes: BTreeMap<String, ProbeSpec>,
+    /// What `--out` writes.
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Named sets of overrides (flat or dotted keys, as `--set`), e.g. the columns of a figure.
+    #[serde(default)]
+    pub variants: BTreeMap<String, BTreeMap<String, toml::Value>>,
+}
+
+/// A method name, checked against [`Method::ALL`] while parsing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(try_from = "String", into = "String")]
+pub struct MethodName(pub Method);
+
+impl TryFrom<String> for MethodName {
+    type Error = String;
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse::<Method>().map(MethodName).map_err(|e| e.to_string())
+    }
+}
+
+impl From<MethodName> for String {
+    fn from(m: MethodName) -> String {
+        m.0.name().to_string()
+    }
+}
+
+/// A point or vector `[x, y, z]`.
+pub type Vector = [f64; 3];
+
+/// Where the mesh comes from.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "generator", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MeshSpec {
+    /// A box `[min, max]` with `res * cells` hexes per axis, Kuhn-split into 6 tets each.
+    Box {
+        min: Vector,
+        max: Vector,
+        /// Resolution multiplier.
+        res: usize,
+        /// Cells per axis per unit of `res` (default `[1, 1, 1]`).
+        #[serde(default = "ones")]
+        cells: [usize; 3],
+        /// `res` must be a multiple of this (so that load patches fall on grid lines).
+        #[serde(default = "one")]
+        res_multiple_of: usize,
+    },
+    /// A solid cylinder about the z axis from `z = 0` to `height`.
+    Cylinder { radius: f64, height: f64, res: usize },
+    /// A puck (short cylinder with at least `res` layers).
+    Puck { radius: f64, height: f64, res: usize },
+    /// A thick-walled tube about the z axis from `z = 0` to `height`.
+    Tube {
+        inner_radius: f64,
+        outer_radius: f64,
+        height: f64,
+        res: usize,
+    },
+    /// A ball centred at `center`.
+    Ball {
+        radius: f64,
+        res: usize,
+        #[serde(default)]
+        center: Vector,
+    },
+    /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
+    Explicit {
+        positions: Vec<Vector>,
+        tets: Vec<[usize; 4]>,
+    },
+    /// A mesh file: Gmsh `.msh`, TetGen `.node`/`.ele` (either name), or `.vtu`. A relative
+    /// path is resolved against the scene file's folder (or the working directory).
+    File { path: PathBuf },
+}
+
+fn ones() -> [usize; 3] {
+    [1, 1, 1]
+}
+
+fn one() -> usize {
+    1
+}
+
+/// Material parameters. Give exactly one of `young` and `mu`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus `E` (Pa).
+    pub young: Option<f64>,
+    /// Shear modulus `mu` (Pa), instead of `young`.
+    pub mu: Option<f64>,
+    /// Poisson's ratio.
+    pub nu: f64,
+    /// Density (kg/m^3).
+    #[serde(default = "default_density")]
+    pub rho: f64,
+    /// Local penalty stiffness `lambda` of the zonal method (default: equivalent to nu = 0.45).
+    pub lambda: Option<f64>,
+    /// Steepness `beta` of `U(J; beta)` (eq. 13 of Sheen et al.).
+    pub beta: Option<f64>,
+    /// Threshold `epsilon` of the F-bar C2 extension (eq. 11 of Sheen et al.).
+    pub epsilon: Option<f64>,
+    /// Volumetric stiffness of the mixed methods: `bulk` or `lambda`.
+    pub kappa: Option<KappaName>,
+    /// The energy under the zonal constraints: `constrained` or `standard`.
+    pub zonal_energy: Option<ZonalEnergyName>,
+    /// Base Poisson ratio of the augmented dual solver, or `0` for plain dual ascent.
+    pub dual_base_nu: Option<f64>,
+    /// Whether the epidermis surface energy (eq. 16 of Sheen et al.) is on.
+    #[serde(default)]
+    pub epidermis: bool,
+    /// Young's modulus of the epidermis (Pa).
+    pub epidermis_young: Option<f64>,
+    /// Poisson's ratio of the epidermis.
+    pub epidermis_nu: Option<f64>,
+    /// Steepness of the epidermis area penalty.
+    pub epidermis_gamma: Option<f64>,
+}
+
+fn default_density() -> f64 {
+    1000.0
+}
+
+/// `kappa` choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum KappaName {
+    Bulk,
+    Lambda,
+}
+
+/// `zonal_energy` choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ZonalEnergyName {
+    Constrained,
+    Standard,
+}
+
+/// A region of space given by the intersection of the listed primitives (all must hold).
+/// Used as a vertex set (Dirichlet, displacement probes), a boundary-face set (tractions,
+/// pressure: faces whose three vertices are inside) or a tet set (centroid inside).
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SelectionSpec {
+    /// Axis-aligned box (closed, padded by the tolerance).
+    #[serde(rename = "box")]
+    pub aabb: Option<BoxSpec>,
+    /// Points on a plane (within the tolerance).
+    pub plane: Option<PlaneSpec>,
+    /// Points on the side of the plane the normal points to.
+    pub half_space: Option<PlaneSpec>,
+    /// Points whose distance from an axis lies in `[min, max]` (within the tolerance).
+    pub radial: Option<RadialSpec>,
+    /// Points within `radius` of `center`.
+    pub sphere: Option<SphereSpec>,
+    /// Only vertices of the boundary surface.
+    #[serde(default)]
+    pub surface: bool,
+    /// Everything (the whole mesh).
+    #[serde(default)]
+    pub all: bool,
+    /// Explicit vertex indices (only for generated meshes whose numbering is known).
+    pub vertices: Option<Vec<usize>>,
+    /// Geometric tolerance (default: 1e-6 times the mesh's bounding-box diagonal).
+    pub tolerance: Option<f64>,
+}
+
+/// A box.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    pub min: Vector,
+    pub max: Vector,
+}
+
+/// A plane through `point` with `normal`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSpec {
+    pub point: Vector,
+    pub normal: Vector,
+}
+
+/// Distance from the axis through `center` along `axis`, between `min` and `max`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RadialSpec {
+    #[serde(default)]
+    pub center: Vector,
+    #[serde(default = "z_axis")]
+    pub axis: Vector,
+    #[serde(default)]
+    pub min: f64,
+    #[serde(default = "infinity")]
+    pub max: f64,
+}
+
+/// A ball.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    pub center: Vector,
+    pub radius: f64,
+}
+
+fn z_axis() -> Vector {
+    [0.0, 0.0, 1.0]
+}
+
+fn infinity() -> f64 {
+    f64::INFINITY
+}
+
+/// A Dirichlet condition on a selection.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirichletSpec {
+    /// The selection's name.
+    pub selection: String,
+    /// Prescribed components: any of `"x"`, `"y"`, `"z"` in one string (default `"xyz"`).
+    #[serde(default = "xyz")]
+    pub axes: String,
+    /// How the vertices move with the load parameter (default `fixed`).
+    #[serde(default)]
+    pub motion: MotionSpec,
+}
+
+fn xyz() -> String {
+    "xyz".to_string()
+}
+
+/// A prescribed motion, reached at the end of the stepping.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MotionSpec {
+    /// Held at rest.
+    #[default]
+    Fixed,
+    /// Translated by `offset`.
+    Translate(Vector),
+    /// Rotated by `degrees` about `axis` through `center`.
+    Rotate {
+        center: Vector,
+        axis: Vector,
+        degrees: f64,
+    },
+    /// Scaled about `center` by `factors`.
+    Scale { center: Vector, factors: Vector },
+}
+
+/// External loads.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadsSpec {
+    /// Gravitational acceleration (m/s^2), e.g. `[0, -9.8, 0]`.
+    pub gravity: Option<Vector>,
+    /// Dead tractions on boundary faces.
+    #[serde(default)]
+    pub traction: Vec<TractionSpec>,
+    /// Follower pressures on boundary faces.
+    #[serde(default)]
+    pub pressure: Vec<PressureSpec>,
+}
+
+/// A dead traction (Pa) on the boundary faces of a selection.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    pub selection: String,
+    pub traction: Vector,
+}
+
+/// A follower pressure (Pa, positive pushes into the body) on the boundary faces of a selection.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PressureSpec {
+    pub selection: String,
+    pub pressure: f64,
+}
+
+/// Zones of the `zonal` method.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ZonesSpec {
+    /// `global`, `k-ring` or `painted`.
+    pub kind: ZoneKind,
+    /// Ring size of `k-ring` zones.
+    pub k: Option<usize>,
+    /// For `painted`: one surface selection per zone.
+    #[serde(default)]
+    pub paint: Vec<String>,
+}
+
+/// Zone layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ZoneKind {
+    Global,
+    KRing,
+    Painted,
+}
+
+/// Quasi-static load stepping or implicit Euler dynamics.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "mode", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum SteppingSpec {
+    /// Loads and motions ramped over `steps` equilibrium solves.
+    QuasiStatic { steps: usize },
+    /// Implicit Euler with time step `dt` (s) for `frames` frames.
+    Dynamic { dt: f64, frames: usize },
+}
+
+/// Newton limits and tolerances (defaults: the solver's).
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    pub max_iterations: Option<usize>,
+    pub force_tolerance: Option<f64>,
+    pub constraint_tolerance: Option<f64>,
+    pub max_backtracks: Option<usize>,
+    pub max_dual_iterations: Option<usize>,
+    pub project_hessians: Option<bool>,
+    /// `direct` or `iterative`.
+    pub linear: Option<LinearName>,
+    /// Relative tolerance of the iterative linear solver.
+    pub linear_tolerance: Option<f64>,
+    /// Iteration limit of the iterative linear solver.
+    pub linear_max_iterations: Option<usize>,
+}
+
+/// Linear solver choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinearName {
+    Direct,
+    Iterative,
+}
+
+/// A named scalar measured on the final state.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum ProbeSpec {
+    /// `scale * u_component` at a point (barycentric in the containing rest tet), or reduced
+    /// over the vertices of a selection.
+    Displacement {
+        point: Option<Vector>,
+        selection: Option<String>,
+        /// `x`, `y`, `z` or `norm`.
+        component: ComponentName,
+        #[serde(default = "unit")]
+        scale: f64,
+        /// Over a selection: `mean` (default), `max` or `min`.
+        #[serde(default)]
+        reduce: Reduce,
+    },
+    /// Whole-body deformed/rest volume minus one.
+    VolumeChange,
+    /// Deformed/rest volume of the tets whose centroid lies in a selection (all tets if none).
+    VolumeRatio { selection: Option<String> },
+    /// Smallest deformed/rest volume ratio of a tet.
+    MinVolumeRatio,
+    /// Largest deformed/rest volume ratio of a tet.
+    MaxVolumeRatio,
+    /// Inverted tets in the final state.
+    InvertedTets,
+    /// The final step's constraint residual (max-norm).
+    ConstraintResidual,
+    /// `(V - V_expected) / V_rest`, with `V_expected = sum_e V_e (1 + p_e / kappa)` the volume the
+    /// per-tet pressures imply (tension-positive pressures, `kappa` of the mixed methods).
+    PressureVolumeMismatch,
+    /// Mean jump of the per-tet pressure across interior faces divided by the pressure's
+    /// standard deviation (about 1.13 for white noise, small for a smooth field).
+    PressureCheckerboard,
+    /// Mean increase of the distance from an axis of the vertices of a selection.
+    RadiusIncrease {
+        selection: String,
+        #[serde(default)]
+        center: Vector,
+        #[serde(default = "z_axis")]
+        axis: Vector,
+    },
+    /// An energy of the final frame: `kinetic`, `elastic`, `external` or `total`.
+    Energy { which: EnergyName },
+}
+
+fn unit() -> f64 {
+    1.0
+}
+
+/// A displacement component.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ComponentName {
+    X,
+    Y,
+    Z,
+    Norm,
+}
+
+/// How a probe reduces over a selection.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reduce {
+    #[default]
+    Mean,
+    Max,
+    Min,
+}
+
+/// An energy name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EnergyName {
+    Kinetic,
+    Elastic,
+    External,
+    Total,
+}
+
+/// What `--out` writes.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Write a VTU every `every` steps or frames (the last one is always written).
+    #[serde(default = "one")]
+    pub every: usize,
+    /// Write VTU frames and the `.pvd` collection.
+    #[serde(default = "yes")]
+    pub vtu: bool,
+    /// Write PNG plots.
+    #[serde(default = "yes")]
+    pub plots: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            every: 1,
+            vtu: true,
+            plots: true,
+        }
+    }
+}
+
+impl Scene {
+    /// Parses a scene from TOML text. `origin` names the source in errors.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let value: toml::Value = toml::from_str(text).map_err(|e| SceneError::Toml {
+            origin: origin.to_string(),
+            message: e.to_string(),
+        })?;
+        Scene::from_value(value, origin)
+    }
+
+    /// Deserializes a scene from a TOML value tree, naming the key of the first error.
+    pub fn from_value(value: toml::Value, origin: &str) -> Result<Scene, SceneError> {
+        let scene: Scene = serde_path_to_error::deserialize(value).map_err(|e| {
+            let key = e.path().to_string();
+            SceneError::Invalid {
+                origin: origin.to_string(),
+                key: if key == "." { String::new() } else { key },
+                message: e.into_inner().to_string(),
+            }
+        })?;
+        scene.validate(origin)?;
+        Ok(scene)
+    }
+
+    /// The scene as a TOML value tree (for overrides).
+    pub fn to_value(&self) -> toml::Value {
+        toml::Value::try_from(self).expect("a scene always serializes")
+    }
+
+    /// The scene as TOML text.
+    pub fn to_toml_string(&self) -> String {
+        toml::to_string_pretty(self).expect("a scene always serializes")
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.method.0
+    }
+
+    /// The stepping's number of steps or frames.
+    pub fn num_steps(&self) -> usize {
+        match self.stepping {
+            SteppingSpec::QuasiStatic { steps } => steps,
+            SteppingSpec::Dynamic { frames, .. } => frames,
+        }
+    }
+
+    /// Whether the scene is dynamic.
+    pub fn is_dynamic(&self) -> bool {
+        matches!(self.stepping, SteppingSpec::Dynamic { .. })
+    }
+
+    /// Checks the cross-key rules serde cannot: references to selections, ranges, choices.
+    fn validate(&self, origin: &str) -> Result<(), SceneError> {
+        let bad = |key: &str, message: String| SceneError::Invalid {
+            origin: origin.to_string(),
+            key: key.to_string(),
+            message,
+        };
+        let names = || self.selections.keys().cloned().collect::<Vec<_>>().join(", ");
+        let check_selection = |key: String, name: &str| {
+            if self.selections.contains_key(name) {
+                Ok(())
+            } else {
+                Err(bad(
+                    &key,
+                    format!("unknown selection '{name}' (defined: {})", names()),
+                ))
+            }
+        };
+        match (self.material.young, self.material.mu) {
+            (Some(_), Some(_)) => {
+                return Err(bad("material", "give either young or mu, not both".into()))
+            }
+            (None, None) => return Err(bad("material", "give young (E) or mu".into())),
+            _ => {}
+        }
+        for (name, s) in &self.selections {
+            let key = format!("selections.{name}");
+            let has_region = s.aabb.is_some()
+                || s.plane.is_some()
+                || s.half_space.is_some()
+                || s.radial.is_some()
+                || s.sphere.is_some()
+                || s.vertices.is_some();
+            if !(has_region || s.all || s.surface) {
+                return Err(bad(
+                    &key,
+                    "a selection needs at least one of box, plane, half_space, radial, sphere, vertices, surface, all".into(),
+                ));
+            }
+            if let Some(t) = s.tolerance {
+                if !(t.is_finite() && t >= 0.0) {
+                    return Err(bad(&format!("{key}.tolerance"), format!("{t} must be finite and >= 0")));
+                }
+            }
+        }
+        for (i, d) in self.dirichlet.iter().enumerate() {
+            check_selection(format!("dirichlet.{i}.selection"), &d.selection)?;
+            if d.axes.is_empty() || !d.axes.chars().all(|c| matches!(c, 'x' | 'y' | 'z')) {
+                return Err(bad(
+                    &format!("dirichlet.{i}.axes"),
+                    format!("'{}' must be letters among x, y, z (e.g. \"xyz\", \"z\")", d.axes),
+                ));
+            }
+        }
+        for (i, t) in self.loads.traction.iter().enumerate() {
+            check_selection(format!("loads.traction.{i}.selection"), &t.selection)?;
+        }
+        for (i, p) in self.loads.pressure.iter().enumerate() {
+            check_selection(format!("loads.pressure.{i}.selection"), &p.selection)?;
+        }
+        if let Some(z) = &self.zones {
+            match z.kind {
+                ZoneKind::KRing if z.k.is_none_or(|k| k == 0) => {
+                    return Err(bad("zones.k", "k-ring zones need k >= 1".into()))
+                }
+                ZoneKind::Painted if z.paint.is_empty() => {
+                    return Err(bad(
+                        "zones.paint",
+                        "painted zones need a list of surface selections, one per zone".into(),
+                    ))
+                }
+                _ => {}
+            }
+            for (i, name) in z.paint.iter().enumerate() {
+                check_selection(format!("zones.paint.{i}"), name)?;
+            }
+        }
+        for (name, p) in &self.probes {
+            let key = format!("probes.{name}");
+            match p {
+                ProbeSpec::Displacement {
+                    point, selection, ..
+                } => {
+                    if point.is_some() == selection.is_some() {
+                        return Err(bad(&key, "a displacement probe needs exactly one of point and selection".into()));
+                    }
+                    if let Some(s) = selection {
+                        check_selection(format!("{key}.selection"), s)?;
+                    }
+                }
+                ProbeSpec::VolumeRatio { selection: Some(s) } => {
+                    check_selection(format!("{key}.selection"), s)?
+                }
+                ProbeSpec::RadiusIncrease { selection, .. } => {
+                    check_selection(format!("{key}.selection"), selection)?
+                }
+                _ => {}
+            }
+        }
+        match self.stepping {
+            SteppingSpec::QuasiStatic { steps } if steps == 0 => {
+                return Err(bad("stepping.steps", "at least one step is needed".into()))
+            }
+            SteppingSpec::Dynamic { dt, frames } => {
+                if frames == 0 {
+                    return Err(bad("stepping.frames", "at least one frame is needed".into()));
+                }
+                if !(dt.is_finite() && dt > 0.0) {
+                    return Err(bad("stepping.dt", format!("{dt} must be finite and > 0")));
+                }
+            }
+            _ => {}
+        }
+        if self.output.every == 0 {
+            return Err(bad("output.every", "must be at least 1".into()));
+        }
+        match &self.mesh {
+            MeshSpec::Box {
+                res,
+                res_multiple_of,
+                cells,
+                ..
+            } => {
+                if *res == 0 || *res_multiple_of == 0 || res % res_multiple_of != 0 {
+                    return Err(bad(
+                        "mesh.res",
+                        format!("{res} must be a positive multiple of {res_multiple_of}"),
+                    ));
+                }
+                if cells.contains(&0) {
+                    return Err(bad("mesh.cells", "every entry must be at least 1".into()));
+                }
+            }
+            MeshSpec::Cylinder { res, .. }
+            | MeshSpec::Puck { res, .. }
+            | MeshSpec::Tube { res, .. }
+            | MeshSpec::Ball { res, .. }
+                if *res == 0 =>
+            {
+                return Err(bad("mesh.res", "must be at least 1".into()))
+            }
+            _ => {}
+        }
+        for (variant, sets) in &self.variants {
+            for key in sets.keys() {
+                crate::overrides::check_key_syntax(key).map_err(|m| {
+                    bad(&format!("variants.{variant}.{key}"), m)
+                })?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,49 @@
+//! Errors of the solver layer. A failed solve is a value that says why; the stepping driver
+//! wraps it with the last converged state and the iteration log.
+
+use isochor_constraints::ConstraintError;
+use isochor_energies::{OutOfDomain, ParameterError};
+use isochor_mesh::MeshError;
+
+/// Why a model could not be built or a solve failed.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum SolverError {
+    #[error("unknown method '{name}' (valid: {valid})")]
+    UnknownMethod { name: String, valid: String },
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    #[error("{0}")]
+    Mesh(String),
+    #[error("invalid problem: {0}")]
+    InvalidProblem(String),
+    #[error("method {method} cannot run at nu = {nu}: {reason}")]
+    Unsupported {
+        method: &'static str,
+        nu: f64,
+        reason: &'static str,
+    },
+    #[error("the initial state is outside the domain of the energy: {0}")]
+    InvalidInitialState(String),
+    #[error("Newton did not converge in {iterations} iterations (force residual {force_residual:e}, constraint residual {constraint_residual:e})")]
+    NotConverged {
+        iterations: usize,
+        force_residual: f64,
+        constraint_residual: f64,
+    },
+    #[error("line search failed after {backtracks} backtracks: {reason}")]
+    LineSearch { backtracks: usize, reason: String },
+    #[error("linear solver failed: {0}")]
+    Linear(String),
+    #[error("non-finite value in {0}")]
+    NonFinite(&'static str),
+    #[error(transparent)]
+    Constraint(#[from] ConstraintError),
+    #[error(transparent)]
+    Energy(#[from] OutOfDomain),
+}
+
+impl From<MeshError> for SolverError {
+    fn from(e: MeshError) -> Self {
+        SolverError::Mesh(e.to_string())
+    }
+}

@@ -1,0 +1,128 @@
+//! Fill-reducing order for the saddle-point matrix `[[K, G^T], [G, -C]]` that keeps
+//! `LDL^T` without pivoting stable at `C = 0` (NOTES-toolchain: AMD alone meets zero
+//! pivots there): every constraint row is placed right after its *anchor* DOF (for
+//! nodal P1 constraints, the node's last free displacement DOF), so its pivot is
+//! formed after the displacement it couples to has been eliminated. Constraints without
+//! an anchor (dense zonal rows) go last.
+//!
+//! The order is found by AMD on the compressed graph whose vertices are the `n` DOFs,
+//! each anchored constraint merged into its anchor, and then expanded.
+
+use super::{LinearError, SparsityPattern, Triangle};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::amd;
+use faer::sparse::SymbolicSparseColMatRef;
+
+/// Forward permutation of the `n + m` KKT unknowns: `fwd[new] = old`, with DOFs
+/// `0..n` and constraint `i` numbered `n + i`.
+pub(crate) fn anchored_ordering(
+    k: SymbolicSparseColMatRef<'_, usize>,
+    g: SymbolicSparseColMatRef<'_, usize>,
+    anchors: &[Option<usize>],
+) -> Result<Vec<usize>, LinearError> {
+    let n = k.nrows();
+    let m = g.nrows();
+    if anchors.len() != m {
+        return Err(LinearError::DimensionMismatch {
+            what: "constraint anchors",
+            expected: m,
+            got: anchors.len(),
+        });
+    }
+    if let Some((constraint, &Some(dof))) = anchors
+        .iter()
+        .enumerate()
+        .find(|(_, a)| a.is_some_and(|d| d >= n))
+    {
+        return Err(LinearError::BadAnchor { constraint, dof, n });
+    }
+    // Compressed graph: K's edges, plus (anchor, dof) for every G entry of an anchored row.
+    let mut pairs: Vec<(usize, usize)> = (0..n).map(|i| (i, i)).collect();
+    for j in 0..n {
+        pairs.extend(k.col_range(j).map(|p| (k.row_idx()[p], j)));
+    }
+    for j in 0..g.ncols() {
+        for q in g.col_range(j) {
+            if let Some(a) = anchors[g.row_idx()[q]] {
+                pairs.push((a, j));
+                pairs.push((j, a));
+            }
+        }
+    }
+    let graph = SparsityPattern::new(n, n, &pairs, Triangle::Full)?;
+    let mut fwd = vec![0usize; n];
+    let mut inv = vec![0usize; n];
+    let req = amd::order_maybe_unsorted_scratch::<usize>(n, graph.nnz());
+    let mut mem = MemBuffer::try_new(req).map_err(|_| LinearError::Faer("out of memory".into()))?;
+    amd::order_maybe_unsorted(
+        &mut fwd,
+        &mut inv,
+        graph.symbolic(),
+        amd::Control::default(),
+        MemStack::new(&mut mem),
+    )?;
+    // Expand: each DOF followed by the constraints anchored to it, free rows last.
+    let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut free = Vec::new();
+    for (i, a) in anchors.iter().enumerate() {
+        match a {
+            Some(d) => anchored[*d].push(n + i),
+            None => free.push(n + i),
+        }
+    }
+    let mut order = Vec::with_capacity(n + m);
+    for d in fwd {
+        order.push(d);
+        order.extend_from_slice(&anchored[d]);
+    }
+    order.extend(free);
+    Ok(order)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constraints_follow_their_anchors_and_free_rows_go_last() {
+        // K: a path 0-1-2-3; G: row 0 on DOFs {0, 1}, row 1 on {2, 3}, row 2 on all.
+        let kp = [
+            (0, 0),
+            (1, 0),
+            (0, 1),
+            (1, 1),
+            (2, 1),
+            (1, 2),
+            (2, 2),
+            (3, 2),
+            (2, 3),
+            (3, 3),
+        ];
+        let k = SparsityPattern::new(4, 4, &kp, Triangle::Full).unwrap();
+        let gp = [
+            (0, 0),
+            (0, 1),
+            (1, 2),
+            (1, 3),
+            (2, 0),
+            (2, 1),
+            (2, 2),
+            (2, 3),
+        ];
+        let g = SparsityPattern::new(3, 4, &gp, Triangle::Full).unwrap();
+        let order =
+            anchored_ordering(k.symbolic(), g.symbolic(), &[Some(1), Some(3), None]).unwrap();
+        let pos = |v: usize| order.iter().position(|&x| x == v).unwrap();
+        assert_eq!(order.len(), 7);
+        assert_eq!(pos(4), pos(1) + 1);
+        assert_eq!(pos(5), pos(3) + 1);
+        assert_eq!(pos(6), 6);
+        let mut sorted = order.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..7).collect::<Vec<_>>());
+        assert!(matches!(
+            anchored_ordering(k.symbolic(), g.symbolic(), &[Some(9), None, None]),
+            Err(LinearError::BadAnchor { dof: 9, .. })
+        ));
+    }
+}

@@ -1,0 +1,60 @@
+//! Where the time of a linear solve went, and how trustworthy its result is.
+
+use std::time::Duration;
+
+/// Signs of the pivots `D` of an `LDL^T` factorization (Sylvester's law of inertia:
+/// they are the signs of the eigenvalues of the factorized matrix).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Inertia {
+    /// Positive pivots.
+    pub positive: usize,
+    /// Negative pivots.
+    pub negative: usize,
+    /// Pivots below the zero threshold, or replaced by the sign-aware regularization.
+    pub zero: usize,
+}
+
+/// Which factorization produced the last solution.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Method {
+    /// Nothing factorized yet.
+    #[default]
+    None,
+    /// Sparse `LL^T` (SPD systems).
+    Cholesky,
+    /// Supernodal `LDL^T` without pivot regularization.
+    Ldlt,
+    /// Supernodal `LDL^T` with sign-aware pivot regularization and iterative refinement.
+    RegularizedLdlt,
+    /// Sparse `LU` with partial pivoting (fallback).
+    Lu,
+}
+
+/// Timings and diagnostics of the latest factorization and solve.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SolveReport {
+    /// The factorization in use.
+    pub method: Method,
+    /// Time of the symbolic analysis (ordering, elimination tree); paid once per pattern.
+    pub symbolic_time: Duration,
+    /// Time of the latest numeric factorization, including copying values into the
+    /// factorization's matrix and any retries (regularized `LDL^T`, `LU` fallback).
+    pub numeric_time: Duration,
+    /// Time of the latest solve, including iterative refinement.
+    pub solve_time: Duration,
+    /// Number of numeric factorizations performed for the latest system (retries count).
+    pub factorizations: usize,
+    /// Stored entries of the factor `L`.
+    pub factor_nnz: usize,
+    /// Shift added to the diagonal of `K` (absolute).
+    pub shift: f64,
+    /// Pivots replaced by the sign-aware regularization of the `LDL^T` (0 if none).
+    pub regularized_pivots: usize,
+    /// Inertia of the accepted `LDL^T` factorization (`None` for `LL^T` and `LU`).
+    pub inertia: Option<Inertia>,
+    /// Iterative refinement steps of the latest solve.
+    pub refinement_steps: usize,
+    /// Final relative residual `|b - A x| / |b|` of the latest solve (against the
+    /// unregularized matrix, `NaN` if not computed).
+    pub residual: f64,
+}

@@ -1,0 +1,224 @@
+//! A model holds only the terms a problem names: the elastic energy of its method, the
+//! loads it lists, the constraint set of a mixed or zonal method, the lumped masses.
+
+use crate::terms::{
+    AugmentedConstraints, DeadTraction, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure, Gravity,
+};
+use crate::{Dofs, Load, Method, Problem, SolverError, ZonalEnergy};
+use isochor_constraints::{
+    Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance, NodalConstraints,
+    ZonalConstraints,
+};
+use isochor_energies::{
+    constrained_neo_hookean, standard_neo_hookean, DistortionalNeoHookean, Epidermis, Hyperelastic,
+};
+use isochor_mesh::{TetMesh, Vec3, Zones};
+use std::sync::Arc;
+
+/// How the nonlinear problem is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Strategy {
+    /// Newton on the total energy (standard, condensed).
+    Minimize,
+    /// Saddle-point Newton with the full KKT system factorized (mixed methods).
+    SaddleDirect,
+    /// Saddle-point Newton with a Schur complement on the few constraint rows (zonal).
+    SaddleSchur,
+    /// Dual ascent around a primal Newton solve (dual).
+    Dual,
+}
+
+/// The terms, constraints and DOFs of one problem.
+#[derive(Debug)]
+pub struct Model {
+    pub mesh: TetMesh,
+    pub method: Method,
+    pub strategy: Strategy,
+    pub terms: Vec<Box<dyn EnergyTerm>>,
+    /// Constraints solved with multipliers (saddle point and dual).
+    pub constraints: Option<Arc<dyn ConstraintSet>>,
+    /// The constraints folded into the primal energy of the dual solver.
+    pub augmented: Option<AugmentedConstraints>,
+    /// Rest volume measured by each constraint row (scales the constraint residual).
+    pub row_volumes: Vec<f64>,
+    /// For the zonal method, the penalty stiffness and its derivative for output pressures.
+    pub elastic_material: Arc<dyn Hyperelastic>,
+    pub dofs: Dofs,
+    pub masses: Vec<f64>,
+    mu: f64,
+}
+
+/// Lumped vertex masses `rho sum_e V_e / 4`.
+pub fn lumped_masses(mesh: &TetMesh, density: f64) -> Vec<f64> {
+    let mut m = vec![0.0; mesh.num_vertices()];
+    for (t, v) in mesh.tets().iter().zip(mesh.rest_volumes()) {
+        for &i in t {
+            m[i] += density * v / 4.0;
+        }
+    }
+    m
+}
+
+/// The rest volume measured by each row of `constraints`: by Euler's theorem for the
+/// degree-3 homogeneous volume, `(G(X) X)_i = 3 V_i` for both the linear and the
+/// logarithmic measure.
+fn row_volumes(constraints: &dyn ConstraintSet, rest: &[Vec3]) -> Result<Vec<f64>, SolverError> {
+    let pattern = constraints.jacobian_pattern();
+    let mut values = vec![0.0; pattern.len()];
+    constraints.jacobian_values(rest, &mut values)?;
+    let mut v = vec![0.0; constraints.num_constraints()];
+    for (&(row, dof), g) in pattern.iter().zip(&values) {
+        v[row] += g * rest[dof / 3][dof % 3] / 3.0;
+    }
+    Ok(v)
+}
+
+/// The diagonal of a compliance (lumped sets only).
+fn diagonal(c: Compliance) -> Result<Vec<f64>, SolverError> {
+    match c {
+        Compliance::Diagonal(d) => Ok(d),
+        Compliance::Sparse(_) => Err(SolverError::InvalidProblem(
+            "this solver needs a lumped (diagonal) compliance".into(),
+        )),
+    }
+}
+
+impl Model {
+    /// Shear modulus of the model's material.
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// Builds the model of `problem`, with element Hessians projected to PSD if asked.
+    pub fn new(problem: Problem, project_hessians: bool) -> Result<Self, SolverError> {
+        let Problem {
+            mesh,
+            method,
+            material,
+            zones,
+            dirichlet,
+            loads,
+        } = problem;
+        material.validate()?;
+        let dofs = Dofs::new(mesh.num_vertices(), &dirichlet)?;
+        let masses = lumped_masses(&mesh, material.density);
+        let mu = material.mu;
+        let unsupported = |reason| SolverError::Unsupported {
+            method: method.name(),
+            nu: material.nu,
+            reason,
+        };
+
+        let elastic: Arc<dyn Hyperelastic> = match method {
+            Method::Standard => Arc::new(standard_neo_hookean(material.lame()?)?),
+            Method::Zonal => match material.zonal_energy {
+                ZonalEnergy::Constrained => Arc::new(constrained_neo_hookean(
+                    mu,
+                    material.zonal_lambda,
+                    material.beta,
+                    material.epsilon,
+                )?),
+                ZonalEnergy::Standard => Arc::new(standard_neo_hookean(material.lame()?)?),
+            },
+            _ => Arc::new(DistortionalNeoHookean::new(mu)?),
+        };
+
+        let kappa = || material.mixed_kappa();
+        let nodal = |measure, compliance| -> Result<NodalConstraints, SolverError> {
+            Ok(NodalConstraints::new(&mesh, measure, kappa()?, compliance)?)
+        };
+        let mut constraints: Option<Arc<dyn ConstraintSet>> = None;
+        let mut augmented = None;
+        let strategy = match method {
+            Method::Standard => Strategy::Minimize,
+            Method::MixedP1 => {
+                constraints = Some(Arc::new(nodal(Measure::Linear, material.nodal_compliance)?));
+                Strategy::SaddleDirect
+            }
+            Method::MixedP1Log => {
+                constraints = Some(Arc::new(nodal(Measure::Logarithmic, material.nodal_compliance)?));
+                Strategy::SaddleDirect
+            }
+            Method::MixedP0 | Method::MixedP0Log => {
+                let measure = if method == Method::MixedP0 {
+                    Measure::Linear
+                } else {
+                    Measure::Logarithmic
+                };
+                constraints = Some(Arc::new(ElementConstraints::new(&mesh, measure, kappa()?)?));
+                Strategy::SaddleDirect
+            }
+            Method::Condensed => {
+                if material.nu >= 0.5 {
+                    return Err(unsupported(
+                        "static condensation needs C^-1, which does not exist when C = 0; use mixed-p1 or dual",
+                    ));
+                }
+                let set: Arc<dyn ConstraintSet> = Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
+                let c = diagonal(set.compliance())?;
+                let stiffness = c.iter().map(|ci| 1.0 / ci).collect();
+                let zero = vec![0.0; c.len()];
+                augmented = Some(AugmentedConstraints::new(set, zero, stiffness));
+                Strategy::Minimize
+            }
+            Method::Dual => {
+                let set: Arc<dyn ConstraintSet> = Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
+                let c = diagonal(set.compliance())?;
+                let stiffness = match material.dual_base_nu {
+                    Some(nu) => {
+                        let base = NodalConstraints::new(
+                            &mesh,
+                            Measure::Linear,
+                            isochor_energies::bulk_modulus(material.young(), nu)?,
+                            NodalCompliance::Lumped,
+                        )?;
+                        diagonal(base.compliance())?.iter().map(|ci| 1.0 / ci).collect()
+                    }
+                    None => vec![0.0; c.len()],
+                };
+                augmented = Some(AugmentedConstraints::new(set.clone(), c, stiffness));
+                constraints = Some(set);
+                Strategy::Dual
+            }
+            Method::Zonal => {
+                let zones = zones.unwrap_or_else(|| Zones::global(&mesh));
+                constraints = Some(Arc::new(ZonalConstraints::new(&mesh, &zones)?));
+                Strategy::SaddleSchur
+            }
+        };
+
+        let mut terms: Vec<Box<dyn EnergyTerm>> = vec![Box::new(Elastic::new(&mesh, elastic.clone(), project_hessians))];
+        if let Some(skin) = material.epidermis {
+            let skin = Epidermis::from_young_poisson(skin.young, skin.poisson, skin.gamma)?;
+            terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
+        }
+        for load in loads {
+            terms.push(match load {
+                Load::Gravity(g) => Box::new(Gravity::new(masses.clone(), g)),
+                Load::Traction { faces, traction } => {
+                    Box::new(DeadTraction::new(mesh.positions(), &faces, traction))
+                }
+                Load::Pressure { faces, pressure } => Box::new(FollowerPressure::new(faces, pressure)),
+            });
+        }
+        let rows = constraints
+            .as_deref()
+            .or(augmented.as_ref().map(|a| a.constraints()))
+            .map(|c| row_volumes(c, mesh.positions()))
+            .transpose()?
+            .unwrap_or_default();
+        Ok(Model {
+            mesh,
+            method,
+            strategy,
+            terms,
+            constraints,
+            augmented,
+            row_volumes: rows,
+            elastic_material: elastic,
+            dofs,
+            masses,
+            mu,
+        })
+    }
+}

@@ -1,0 +1,127 @@
+//! Newton's method on the total energy (methods `standard` and `condensed`, and the primal
+//! step of `dual`): a sparse Cholesky step, shifted until positive definite, and a
+//! backtracking line search that rejects states outside the energy's domain (inverted
+//! elements under `log J`) and enforces sufficient decrease (Armijo).
+
+use crate::linear::{CholeskySolver, ShiftSchedule};
+use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
+use crate::system::System;
+use crate::{IterationReport, SolverError, StepReport};
+use isochor_mesh::Vec3;
+use std::time::Instant;
+
+/// Armijo sufficient-decrease constant.
+const ARMIJO: f64 = 1e-4;
+
+/// A Newton minimizer with its factorization, kept across steps and iterations.
+#[derive(Debug)]
+pub struct Newton {
+    cholesky: CholeskySolver,
+}
+
+impl Newton {
+    /// Symbolic analysis of the system's Hessian pattern (once per run).
+    pub fn new(system: &System<'_>) -> Result<Self, SolverError> {
+        let cholesky = CholeskySolver::new(system.hessian.pattern().symbolic())
+            .map_err(|e| SolverError::Linear(e.to_string()))?;
+        Ok(Newton { cholesky })
+    }
+
+    /// The factorization of the latest Newton matrix (reused by the dual solver, eq. 41).
+    pub fn cholesky(&mut self) -> &mut CholeskySolver {
+        &mut self.cholesky
+    }
+
+    /// Minimizes the energy of `system` over the free DOFs of `x`, driving prescribed DOFs
+    /// to their targets. Appends every iteration to `report`; on error `x` holds the last
+    /// accepted iterate.
+    pub fn minimize(
+        &mut self,
+        system: &mut System<'_>,
+        x: &mut [Vec3],
+        target: &StepTarget,
+        report: &mut StepReport,
+    ) -> Result<(), SolverError> {
+        let settings = system.settings;
+        let dofs = &system.model.dofs;
+        for _ in 0..settings.max_iterations {
+            let d_fixed = gap(x, &target.prescribed, 3 * x.len());
+            let eval = system.assemble(x, target.load, None)?;
+            let residual = dofs.gather(&eval.gradient);
+            let force = norm(&residual);
+            report.force_residual = force;
+            if !force.is_finite() {
+                return Err(SolverError::NonFinite("the force residual"));
+            }
+            if force <= target.force_tolerance && max_abs(&d_fixed) == 0.0 {
+                report.converged = true;
+                return Ok(());
+            }
+            let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
+            system
+                .hessian
+                .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs);
+            let k = system.hessian.matrix(&system.hessian_values)?;
+            report.timings.assembly += system.take_assembly_time();
+
+            let start = Instant::now();
+            let shift = self
+                .cholesky
+                .factorize_with_shifts(k.as_ref(), &ShiftSchedule::default())
+                .map_err(|e| SolverError::Linear(e.to_string()))?;
+            report.timings.factorization += start.elapsed();
+            let start = Instant::now();
+            self.cholesky
+                .solve_in_place(&mut rhs)
+                .map_err(|e| SolverError::Linear(e.to_string()))?;
+            report.timings.solve += start.elapsed();
+
+            let mut direction = d_fixed.clone();
+            for (&dof, dx) in dofs.free().iter().zip(&rhs) {
+                direction[dof] = *dx;
+            }
+            let slope: f64 = eval.gradient.iter().zip(&direction).map(|(g, d)| g * d).sum();
+            let moving_boundary = max_abs(&d_fixed) > 0.0;
+            let slack = 64.0 * f64::EPSILON * eval.energy.abs().max(1e-300);
+            let mut alpha = 1.0;
+            let mut accepted = None;
+            for backtracks in 0..=settings.max_backtracks {
+                let mut trial = x.to_vec();
+                add_scaled(&mut trial, &direction, alpha);
+                if system.is_valid(&trial) {
+                    let e = system.energy(&trial, target.load, false)?.energy;
+                    if e.is_finite()
+                        && (moving_boundary || e <= eval.energy + ARMIJO * alpha * slope + slack)
+                    {
+                        accepted = Some((trial, backtracks));
+                        break;
+                    }
+                }
+                alpha *= 0.5;
+            }
+            report.timings.assembly += system.take_assembly_time();
+            let Some((trial, backtracks)) = accepted else {
+                return Err(SolverError::LineSearch {
+                    backtracks: settings.max_backtracks,
+                    reason: "no step length gave a valid state with sufficient decrease".into(),
+                });
+            };
+            x.copy_from_slice(&trial);
+            if alpha == 1.0 {
+                snap(x, &target.prescribed);
+            }
+            report.iterations.push(IterationReport {
+                force_residual: force,
+                constraint_residual: 0.0,
+                step_length: alpha,
+                backtracks,
+                regularization: shift,
+            });
+        }
+        Err(SolverError::NotConverged {
+            iterations: settings.max_iterations,
+            force_residual: report.force_residual,
+            constraint_residual: 0.0,
+        })
+    }
+}

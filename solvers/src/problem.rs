@@ -1,0 +1,299 @@
+//! What a user asks for: a mesh, a method, material parameters, boundary conditions and
+//! loads. [`crate::Simulation::new`] turns a [`Problem`] into a model holding only the terms
+//! it names.
+
+use crate::SolverError;
+use isochor_constraints::NodalCompliance;
+use isochor_energies::{bulk_modulus, Lame, ParameterError};
+use isochor_mesh::{TetMesh, Vec3, Zones};
+use std::fmt;
+use std::str::FromStr;
+
+/// The discretization and solver of the volumetric response, as named on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Displacement-only coupled neo-Hookean (eq. 6 of Francu et al. 2021), Newton with line search.
+    Standard,
+    /// Mixed FEM, nodal (P1) pressures, linear measure `J - 1` (eq. 24/27), saddle-point Newton.
+    MixedP1,
+    /// Mixed FEM, element (P0) pressures, linear measure (sec. 4.6), saddle-point Newton.
+    MixedP0,
+    /// Mixed FEM, nodal pressures, logarithmic measure `log J` (sec. 6).
+    MixedP1Log,
+    /// Mixed FEM, element pressures, logarithmic measure. With `kappa = lambda` its static
+    /// condensation is exactly the standard neo-Hookean energy.
+    MixedP0Log,
+    /// Static condensation of the nodal mixed system (eq. 37) with a lumped `C^-1`.
+    Condensed,
+    /// Dual ascent / nonlinear Uzawa on the nodal constraints (eq. 39-41), optionally
+    /// augmented with a base Poisson ratio (sec. 8.3).
+    Dual,
+    /// Constrained neo-Hookean of Sheen et al. 2021: F-bar deviatoric energy plus
+    /// `lambda U(J; beta)`, subject to zonal volume constraints (eq. 6-15).
+    Zonal,
+}
+
+impl Method {
+    /// Every method, in the order tables list them.
+    pub const ALL: [Method; 8] = [
+        Method::Standard,
+        Method::MixedP1,
+        Method::MixedP0,
+        Method::MixedP1Log,
+        Method::MixedP0Log,
+        Method::Condensed,
+        Method::Dual,
+        Method::Zonal,
+    ];
+
+    /// The name used by scenes and the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Standard => "standard",
+            Method::MixedP1 => "mixed-p1",
+            Method::MixedP0 => "mixed-p0",
+            Method::MixedP1Log => "mixed-p1-log",
+            Method::MixedP0Log => "mixed-p0-log",
+            Method::Condensed => "condensed",
+            Method::Dual => "dual",
+            Method::Zonal => "zonal",
+        }
+    }
+
+    /// Whether the method carries pressure unknowns or multipliers.
+    pub fn has_constraints(self) -> bool {
+        self != Method::Standard
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = SolverError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| SolverError::UnknownMethod {
+                name: s.to_string(),
+                valid: Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>().join(", "),
+            })
+    }
+}
+
+/// Which volumetric stiffness `kappa` the mixed methods use in their compliance `C = V / kappa`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Kappa {
+    /// The bulk modulus `E / (3 (1 - 2 nu))`, the paper's default (sec. 5).
+    #[default]
+    Bulk,
+    /// The first Lame parameter, as Patterson et al. 2012 (makes `mixed-p0-log` condense
+    /// to the standard neo-Hookean energy exactly).
+    Lambda,
+}
+
+/// The energy the `zonal` method puts under its zone constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum ZonalEnergy {
+    /// F-bar deviatoric neo-Hookean plus `lambda U(J; beta)` (eq. 12-13 of Sheen et al.).
+    #[default]
+    Constrained,
+    /// The standard coupled neo-Hookean with Lame parameters from `(mu, nu)` (Fig. 2 of Sheen et al.).
+    Standard,
+}
+
+/// The epidermis surface energy of eq. 16 (Sheen et al. 2021).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Epidermis {
+    /// Young's modulus of the skin layer, `E_e`.
+    pub young: f64,
+    /// Poisson's ratio of the skin layer, `nu_e` (`lambda_e` from eq. 3).
+    pub poisson: f64,
+    /// Steepness `gamma` of the area penalty.
+    pub gamma: f64,
+}
+
+/// Material parameters shared by every method; each method reads what it needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Shear modulus `mu`.
+    pub mu: f64,
+    /// Poisson's ratio `nu` in `(-1, 0.5]`: gives `lambda` (standard) and `kappa` (mixed).
+    pub nu: f64,
+    /// Mass density `rho` (gravity and inertia).
+    pub density: f64,
+    /// Volumetric stiffness of the mixed methods.
+    pub kappa: Kappa,
+    /// Integration of the nodal compliance (eq. 18) for `mixed-p1`, `mixed-p1-log` and
+    /// `dual` (`condensed` always lumps, and `dual` needs a diagonal one).
+    pub nodal_compliance: NodalCompliance,
+    /// Local penalty stiffness `lambda` of the zonal method.
+    pub zonal_lambda: f64,
+    /// Steepness `beta` of `U(J; beta)` (eq. 13).
+    pub beta: f64,
+    /// Threshold `epsilon` of the F-bar C2 extension (eq. 11).
+    pub epsilon: f64,
+    /// The energy under the zonal constraints.
+    pub zonal_energy: ZonalEnergy,
+    /// Base Poisson ratio of the augmented-Lagrangian dual solver (sec. 8.3); `None` for
+    /// plain dual ascent.
+    pub dual_base_nu: Option<f64>,
+    /// Optional epidermis energy on the boundary surface.
+    pub epidermis: Option<Epidermis>,
+}
+
+impl Material {
+    /// Parameters from Young's modulus and Poisson's ratio, with the papers' defaults
+    /// elsewhere: `kappa` = bulk modulus, zonal `lambda` equivalent to `nu = 0.45`,
+    /// `beta = 1`, `epsilon = 0.1`, dual base `nu = 0.4`, no epidermis.
+    pub fn from_young_poisson(young: f64, nu: f64, density: f64) -> Result<Self, ParameterError> {
+        let mu = Lame::shear_modulus(young, nu)?;
+        let zonal_lambda = Lame::from_young_poisson(young, 0.45)?.lambda;
+        let material = Material {
+            mu,
+            nu,
+            density,
+            kappa: Kappa::Bulk,
+            nodal_compliance: NodalCompliance::Consistent,
+            zonal_lambda,
+            beta: 1.0,
+            epsilon: 0.1,
+            zonal_energy: ZonalEnergy::Constrained,
+            dual_base_nu: Some(0.4),
+            epidermis: None,
+        };
+        material.validate()?;
+        Ok(material)
+    }
+
+    /// Young's modulus `E = 2 mu (1 + nu)`.
+    pub fn young(&self) -> f64 {
+        2.0 * self.mu * (1.0 + self.nu)
+    }
+
+    /// Lame parameters of the standard neo-Hookean; an error at `nu = 0.5`.
+    pub fn lame(&self) -> Result<Lame, ParameterError> {
+        Lame::from_young_poisson(self.young(), self.nu)
+    }
+
+    /// The volumetric stiffness `kappa` of the mixed methods (`+inf` at `nu = 0.5`).
+    pub fn mixed_kappa(&self) -> Result<f64, ParameterError> {
+        match self.kappa {
+            Kappa::Bulk => bulk_modulus(self.young(), self.nu),
+            Kappa::Lambda if self.nu == 0.5 => Ok(f64::INFINITY),
+            Kappa::Lambda => Ok(self.lame()?.lambda),
+        }
+    }
+
+    /// Checks every parameter, naming the first bad one.
+    pub fn validate(&self) -> Result<(), ParameterError> {
+        let bad = |name, value, reason| Err(ParameterError { name, value, reason });
+        Lame::shear_modulus(self.young(), self.nu)?;
+        if !(self.density.is_finite() && self.density >= 0.0) {
+            return bad("rho", self.density, "density must be finite and non-negative");
+        }
+        if !(self.zonal_lambda.is_finite() && self.zonal_lambda >= 0.0) {
+            return bad("lambda", self.zonal_lambda, "must be finite and non-negative");
+        }
+        if !(self.beta.is_finite() && self.beta >= 0.0) {
+            return bad("beta", self.beta, "beta must be finite and non-negative (eq. 13)");
+        }
+        if !(self.epsilon.is_finite() && self.epsilon > 0.0 && self.epsilon < 1.0) {
+            return bad("epsilon", self.epsilon, "epsilon must lie in (0, 1) (eq. 11)");
+        }
+        if let Some(nu) = self.dual_base_nu {
+            if !(nu > -1.0 && nu < 0.5) {
+                return bad("dual_base_nu", nu, "the base Poisson ratio must lie in (-1, 0.5)");
+            }
+        }
+        if let Some(skin) = self.epidermis {
+            Lame::from_young_poisson(skin.young, skin.poisson)?;
+            if !(skin.gamma.is_finite() && skin.gamma >= 0.0) {
+                return bad("epidermis_gamma", skin.gamma, "gamma must be finite and non-negative");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How a Dirichlet-constrained vertex moves with the load parameter `t` in `[0, 1]`
+/// (quasi-static) or with `t = time / duration` (dynamics).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Motion {
+    /// Held at the rest position.
+    Fixed,
+    /// Translated by `t * offset`.
+    Translate(Vec3),
+    /// Rotated by `t * angle` (radians) about `axis` through `center` (twisting).
+    Rotate { center: Vec3, axis: Vec3, angle: f64 },
+    /// Scaled about `center` by `1 + t (factors - 1)` per axis (stretching).
+    Scale { center: Vec3, factors: Vec3 },
+}
+
+impl Motion {
+    /// Prescribed position at load parameter `t` of the vertex with rest position `rest`.
+    pub fn position(&self, rest: &Vec3, t: f64) -> Vec3 {
+        match *self {
+            Motion::Fixed => *rest,
+            Motion::Translate(offset) => rest + t * offset,
+            Motion::Rotate {
+                center,
+                axis,
+                angle,
+            } => {
+                let rotation =
+                    nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), t * angle);
+                center + rotation * (rest - center)
+            }
+            Motion::Scale { center, factors } => {
+                let s = Vec3::repeat(1.0) + t * (factors - Vec3::repeat(1.0));
+                center + (rest - center).component_mul(&s)
+            }
+        }
+    }
+}
+
+/// A Dirichlet condition: the listed components of the listed vertices follow `motion`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dirichlet {
+    /// Vertex indices.
+    pub vertices: Vec<usize>,
+    /// Which components (x, y, z) are prescribed.
+    pub axes: [bool; 3],
+    /// How they move.
+    pub motion: Motion,
+}
+
+/// An external load, ramped by the load parameter in quasi-static stepping.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Load {
+    /// Body force `rho g` per unit rest volume, lumped to the vertices.
+    Gravity(Vec3),
+    /// Dead traction (force per unit rest area) on boundary faces.
+    Traction { faces: Vec<[usize; 3]>, traction: Vec3 },
+    /// Follower pressure on boundary faces, oriented with the body's outward normal: a
+    /// positive pressure pushes the faces into the body, so listing the faces that line a
+    /// chamber inflates it.
+    Pressure { faces: Vec<[usize; 3]>, pressure: f64 },
+}
+
+/// Everything a simulation needs.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    /// The mesh in its rest configuration.
+    pub mesh: TetMesh,
+    /// The method.
+    pub method: Method,
+    /// Material parameters.
+    pub material: Material,
+    /// Zones for the `zonal` method (defaults to one global zone).
+    pub zones: Option<Zones>,
+    /// Dirichlet conditions.
+    pub dirichlet: Vec<Dirichlet>,
+    /// External loads.
+    pub loads: Vec<Load>,
+}

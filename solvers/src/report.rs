@@ -1,0 +1,70 @@
+//! Reports of every Newton iteration and step: how users see the speed/accuracy trade.
+
+use std::time::Duration;
+
+/// One Newton (or dual) iteration.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct IterationReport {
+    /// Norm of the force residual (free DOFs) before the step.
+    pub force_residual: f64,
+    /// Max-norm of the constraint residual `phi - C p` before the step (0 without constraints).
+    pub constraint_residual: f64,
+    /// Accepted step length.
+    pub step_length: f64,
+    /// Line-search backtracks.
+    pub backtracks: usize,
+    /// Shift added to the stiffness to restore the right inertia (0 if none).
+    pub regularization: f64,
+}
+
+/// Where the time of a step went.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Timings {
+    /// Element evaluation and sparse assembly.
+    pub assembly: Duration,
+    /// Numeric (and first symbolic) factorization.
+    pub factorization: Duration,
+    /// Triangular solves, refinement and iterative solves.
+    pub solve: Duration,
+}
+
+impl std::ops::AddAssign for Timings {
+    fn add_assign(&mut self, other: Self) {
+        self.assembly += other.assembly;
+        self.factorization += other.factorization;
+        self.solve += other.solve;
+    }
+}
+
+/// One load step or time step.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StepReport {
+    /// Step index, from 1.
+    pub step: usize,
+    /// Load parameter in `[0, 1]` (quasi-static) or time in seconds (dynamics).
+    pub t: f64,
+    /// Every iteration, in order.
+    pub iterations: Vec<IterationReport>,
+    /// Final force residual norm.
+    pub force_residual: f64,
+    /// Final constraint residual (max-norm).
+    pub constraint_residual: f64,
+    /// Whether the step met both tolerances.
+    pub converged: bool,
+    /// Where the time went.
+    pub timings: Timings,
+    /// Wall time of the whole step.
+    pub wall_time: Duration,
+}
+
+impl StepReport {
+    /// Number of Newton (or dual) iterations.
+    pub fn newton_iterations(&self) -> usize {
+        self.iterations.len()
+    }
+
+    /// Total line-search backtracks.
+    pub fn backtracks(&self) -> usize {
+        self.iterations.iter().map(|i| i.backtracks).sum()
+    }
+}

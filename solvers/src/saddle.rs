@@ -1,0 +1,307 @@
+//! Saddle-point Newton for constrained problems (eq. 21 dynamic, eq. 24 static of Francu
+//! et al. 2021; the KKT system of the zonal constraints of Sheen et al. 2021, eq. 7-8):
+//!
+//! `[[K + K_g, G^T], [G, -C]] (dx, dp) = -(grad E + G^T p, phi - C p)`.
+//!
+//! Two linear strategies: the whole KKT matrix factorized by `LDL^T` with an inertia check
+//! (mixed methods, one constraint per node or element), or a Schur complement on the few
+//! dense zone rows, `S = G K^-1 G^T`, with `K` factorized by Cholesky and never densified
+//! (zonal). Steps are globalized by a backtracking line search on the merit
+//! `|sigma / tol_f|^2 + |theta / (V tol_c)|^2` (squared residuals scaled by their
+//! tolerances; the Newton direction is a descent direction for it) that also rejects states
+//! outside the domain of the energy or the constraints.
+
+use crate::linear::{CholeskySolver, KktOptions, KktSolver, ShiftSchedule};
+use crate::model::Strategy;
+use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
+use crate::system::System;
+use crate::{IterationReport, SolverError, StepReport};
+use faer::sparse::{SparseColMat, Triplet};
+use isochor_constraints::Compliance;
+use isochor_mesh::Vec3;
+use nalgebra::{DMatrix, DVector};
+use std::time::Instant;
+
+/// Armijo constant of the merit decrease.
+const ARMIJO: f64 = 1e-4;
+
+/// The linear solver of the saddle-point step.
+#[derive(Debug)]
+enum Linear {
+    Direct(Box<KktSolver>),
+    Schur(Box<CholeskySolver>),
+}
+
+/// Saddle-point Newton with its factorizations, kept across steps.
+#[derive(Debug)]
+pub struct SaddleNewton {
+    linear: Linear,
+    /// `C` over the constraint rows, `None` if identically zero.
+    compliance: Option<SparseColMat<usize, f64>>,
+    /// Diagonal and off-diagonal action of `C` on multipliers.
+    compliance_entries: Vec<(usize, usize, f64)>,
+}
+
+fn linear_error(e: crate::linear::LinearError) -> SolverError {
+    SolverError::Linear(e.to_string())
+}
+
+impl SaddleNewton {
+    /// Symbolic analysis for the system's patterns (once per run).
+    pub fn new(system: &System<'_>) -> Result<Self, SolverError> {
+        let constraints = system
+            .model
+            .constraints
+            .as_ref()
+            .ok_or_else(|| SolverError::InvalidProblem("saddle-point Newton without constraints".into()))?;
+        let m = constraints.num_constraints();
+        let compliance_entries: Vec<(usize, usize, f64)> = match constraints.compliance() {
+            Compliance::Diagonal(d) => d.into_iter().enumerate().filter(|e| e.1 != 0.0).map(|(i, v)| (i, i, v)).collect(),
+            Compliance::Sparse(t) => t.into_iter().filter(|e| e.2 != 0.0).collect(),
+        };
+        let compliance = if compliance_entries.is_empty() {
+            None
+        } else {
+            let triplets: Vec<_> = compliance_entries.iter().map(|&(r, c, v)| Triplet::new(r, c, v)).collect();
+            Some(SparseColMat::try_new_from_triplets(m, m, &triplets).map_err(|e| SolverError::Linear(format!("{e:?}")))?)
+        };
+        let jacobian = system.jacobian.as_ref().ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
+        let linear = match system.model.strategy {
+            Strategy::SaddleSchur => Linear::Schur(Box::new(
+                CholeskySolver::new(system.hessian.pattern().symbolic()).map_err(linear_error)?,
+            )),
+            _ => {
+                let dofs = &system.model.dofs;
+                let anchors: Vec<Option<usize>> = (0..m)
+                    .map(|row| {
+                        constraints
+                            .anchor_vertex(row)
+                            .and_then(|v| (0..3).rev().find_map(|k| dofs.free_index(3 * v + k)))
+                    })
+                    .collect();
+                Linear::Direct(Box::new(
+                    KktSolver::new(
+                        system.hessian.pattern().symbolic(),
+                        jacobian.pattern().symbolic(),
+                        compliance.as_ref().map(|c| c.symbolic()),
+                        &anchors,
+                        KktOptions::default(),
+                    )
+                    .map_err(linear_error)?,
+                ))
+            }
+        };
+        Ok(SaddleNewton {
+            linear,
+            compliance,
+            compliance_entries,
+        })
+    }
+
+    /// `theta = phi - C p`.
+    fn theta(&self, phi: &[f64], p: &[f64]) -> Vec<f64> {
+        let mut theta = phi.to_vec();
+        for &(r, c, v) in &self.compliance_entries {
+            theta[r] -= v * p[c];
+        }
+        theta
+    }
+
+    /// Residuals `(sigma_f, theta)` at `(x, p)`, and the full-space gradient `grad E + G^T p`.
+    fn residuals(
+        &self,
+        system: &mut System<'_>,
+        x: &[Vec3],
+        p: &[f64],
+        load: f64,
+    ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+        let constraints = system.model.constraints.clone().expect("checked in new");
+        let eval = system.energy(x, load, true)?;
+        let mut sigma = eval.gradient;
+        let pattern = constraints.jacobian_pattern();
+        let mut g = vec![0.0; pattern.len()];
+        constraints.jacobian_values(x, &mut g)?;
+        for (&(row, dof), v) in pattern.iter().zip(&g) {
+            sigma[dof] += v * p[row];
+        }
+        let mut phi = vec![0.0; p.len()];
+        constraints.values(x, &mut phi)?;
+        Ok((sigma, self.theta(&phi, p)))
+    }
+
+    /// Solves one step of the constrained problem from `(x, p)`. Appends every iteration
+    /// to `report`; on error `(x, p)` hold the last accepted iterate.
+    pub fn solve(
+        &mut self,
+        system: &mut System<'_>,
+        x: &mut [Vec3],
+        p: &mut [f64],
+        target: &StepTarget,
+        report: &mut StepReport,
+    ) -> Result<(), SolverError> {
+        let settings = system.settings;
+        let volumes = system.model.row_volumes.clone();
+        let constraints = system.model.constraints.clone().expect("checked in new");
+        let scaled = |theta: &[f64]| -> Vec<f64> {
+            theta.iter().zip(&volumes).map(|(t, v)| t / v).collect()
+        };
+        let merit = |sigma_f: &[f64], theta: &[f64]| -> f64 {
+            let f = norm(sigma_f) / target.force_tolerance;
+            let c = norm(&scaled(theta)) / settings.constraint_tolerance;
+            f * f + c * c
+        };
+        let n_dofs = 3 * x.len();
+        for _ in 0..settings.max_iterations {
+            let d_fixed = gap(x, &target.prescribed, n_dofs);
+            let eval = system.assemble(x, target.load, Some(p))?;
+            let jacobian = system.jacobian.as_ref().expect("constrained system");
+            let mut sigma = eval.gradient;
+            let pattern = constraints.jacobian_pattern();
+            for (&(row, dof), v) in pattern.iter().zip(&system.jacobian_values) {
+                sigma[dof] += v * p[row];
+            }
+            let mut phi = vec![0.0; p.len()];
+            constraints.values(x, &mut phi)?;
+            let theta = self.theta(&phi, p);
+            let sigma_f = system.model.dofs.gather(&sigma);
+            let force = norm(&sigma_f);
+            let constraint = max_abs(&scaled(&theta));
+            report.force_residual = force;
+            report.constraint_residual = constraint;
+            if !(force.is_finite() && constraint.is_finite()) {
+                return Err(SolverError::NonFinite("the saddle-point residual"));
+            }
+            let moving_boundary = max_abs(&d_fixed) > 0.0;
+            if force <= target.force_tolerance && constraint <= settings.constraint_tolerance && !moving_boundary {
+                report.converged = true;
+                return Ok(());
+            }
+            // Right-hand side, with the prescribed increments moved over (K_fc, G_c).
+            let nf = system.model.dofs.num_free();
+            let mut rhs_x: Vec<f64> = sigma_f.iter().map(|s| -s).collect();
+            system.hessian.add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
+            let mut rhs_p: Vec<f64> = theta.iter().map(|t| -t).collect();
+            jacobian.add_coupling(&system.jacobian_values, &d_fixed, -1.0, &mut rhs_p);
+            let k = system.hessian.matrix(&system.hessian_values)?;
+            let g = jacobian.matrix(&system.jacobian_values)?;
+            report.timings.assembly += system.take_assembly_time();
+
+            let (dx, dp, shift) = self.linear_step(k, g, rhs_x, rhs_p, nf, report)?;
+
+            let mut direction = d_fixed.clone();
+            for (&dof, v) in system.model.dofs.free().iter().zip(&dx) {
+                direction[dof] = *v;
+            }
+            let merit0 = merit(&sigma_f, &theta);
+            let mut alpha = 1.0;
+            let mut accepted = None;
+            for backtracks in 0..=settings.max_backtracks {
+                let mut trial_x = x.to_vec();
+                add_scaled(&mut trial_x, &direction, alpha);
+                let trial_p: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + alpha * b).collect();
+                if system.is_valid(&trial_x) {
+                    let (s, t) = self.residuals(system, &trial_x, &trial_p, target.load)?;
+                    let m = merit(&system.model.dofs.gather(&s), &t);
+                    let near = merit0 <= 100.0;
+                    if m.is_finite() && (moving_boundary || near || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0) {
+                        accepted = Some((trial_x, trial_p, backtracks));
+                        break;
+                    }
+                }
+                alpha *= 0.5;
+            }
+            report.timings.assembly += system.take_assembly_time();
+            let Some((trial_x, trial_p, backtracks)) = accepted else {
+                return Err(SolverError::LineSearch {
+                    backtracks: settings.max_backtracks,
+                    reason: "no step length gave a valid state with a smaller residual".into(),
+                });
+            };
+            x.copy_from_slice(&trial_x);
+            p.copy_from_slice(&trial_p);
+            if alpha == 1.0 {
+                snap(x, &target.prescribed);
+            }
+            report.iterations.push(IterationReport {
+                force_residual: force,
+                constraint_residual: constraint,
+                step_length: alpha,
+                backtracks,
+                regularization: shift,
+            });
+        }
+        Err(SolverError::NotConverged {
+            iterations: settings.max_iterations,
+            force_residual: report.force_residual,
+            constraint_residual: report.constraint_residual,
+        })
+    }
+
+    /// Solves the linearized KKT system for `(dx, dp)`; returns the stiffness shift used.
+    fn linear_step(
+        &mut self,
+        k: SparseColMat<usize, f64>,
+        g: SparseColMat<usize, f64>,
+        rhs_x: Vec<f64>,
+        rhs_p: Vec<f64>,
+        nf: usize,
+        report: &mut StepReport,
+    ) -> Result<(Vec<f64>, Vec<f64>, f64), SolverError> {
+        match &mut self.linear {
+            Linear::Direct(kkt) => {
+                let start = Instant::now();
+                let shift = kkt
+                    .factorize_with_shifts(k.as_ref(), g.as_ref(), self.compliance.as_ref().map(|c| c.as_ref()), &ShiftSchedule::default())
+                    .map_err(linear_error)?;
+                report.timings.factorization += start.elapsed();
+                let start = Instant::now();
+                let mut rhs = rhs_x;
+                rhs.extend(rhs_p);
+                kkt.solve_in_place(&mut rhs).map_err(linear_error)?;
+                report.timings.solve += start.elapsed();
+                let dp = rhs.split_off(nf);
+                Ok((rhs, dp, shift))
+            }
+            Linear::Schur(cholesky) => {
+                // K dx + G^T dp = f, G dx - C dp = h:
+                // dp = (G K^-1 G^T + C)^-1 (G K^-1 f - h), dx = K^-1 (f - G^T dp).
+                let start = Instant::now();
+                let shift = cholesky
+                    .factorize_with_shifts(k.as_ref(), &ShiftSchedule::default())
+                    .map_err(linear_error)?;
+                report.timings.factorization += start.elapsed();
+                let start = Instant::now();
+                let m = g.nrows();
+                let mut rows = DMatrix::<f64>::zeros(m, nf);
+                for col in 0..nf {
+                    for (row, v) in g.as_ref().row_idx_of_col(col).zip(g.as_ref().val_of_col(col)) {
+                        rows[(row, col)] += v;
+                    }
+                }
+                let mut z = DMatrix::<f64>::zeros(nf, m);
+                for i in 0..m {
+                    let mut col: Vec<f64> = rows.row(i).iter().copied().collect();
+                    cholesky.solve_in_place(&mut col).map_err(linear_error)?;
+                    z.set_column(i, &DVector::from_vec(col));
+                }
+                let mut schur = &rows * &z;
+                for &(r, c, v) in &self.compliance_entries {
+                    schur[(r, c)] += v;
+                }
+                let mut y = rhs_x.clone();
+                cholesky.solve_in_place(&mut y).map_err(linear_error)?;
+                let y = DVector::from_vec(y);
+                let b = &rows * &y - DVector::from_vec(rhs_p);
+                let dp = schur
+                    .clone()
+                    .cholesky()
+                    .map(|c| c.solve(&b))
+                    .or_else(|| schur.lu().solve(&b))
+                    .ok_or_else(|| SolverError::Linear("the zone Schur complement G K^-1 G^T is singular (are two zones identical?)".into()))?;
+                let dx = y - &z * &dp;
+                report.timings.solve += start.elapsed();
+                Ok((dx.as_slice().to_vec(), dp.as_slice().to_vec(), shift))
+            }
+        }
+    }
+}

@@ -1,0 +1,48 @@
+//! Solver settings: Newton limits, tolerances and the linear solver choice.
+
+/// How linear systems are solved.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LinearSolver {
+    /// Sparse direct factorization (Cholesky for SPD systems, LDL^T for saddle points),
+    /// symbolic factorization reused.
+    #[default]
+    Direct,
+    /// Preconditioned iterative solve (CG for SPD, MINRES for saddle points) with a relative
+    /// tolerance and an iteration limit, for meshes too large to factor (sec. 8 of Francu et al.).
+    Iterative { tolerance: f64, max_iterations: usize },
+}
+
+/// Limits and tolerances of the nonlinear solvers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Newton iterations per step (or primal iterations per dual iteration).
+    pub max_iterations: usize,
+    /// Force residual tolerance, relative to the problem's force scale (see
+    /// [`crate::Simulation::force_scale`]).
+    pub force_tolerance: f64,
+    /// Constraint residual tolerance: `max_i |phi_i - (C p)_i| / V_i` with `V_i` the rest
+    /// volume measured by constraint `i`.
+    pub constraint_tolerance: f64,
+    /// Line-search halvings before a step is declared failed.
+    pub max_backtracks: usize,
+    /// Outer iterations of the dual solver per step.
+    pub max_dual_iterations: usize,
+    /// Project element Hessians to PSD (displacement-only Newton).
+    pub project_hessians: bool,
+    /// Linear solver.
+    pub linear: LinearSolver,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            max_iterations: 50,
+            force_tolerance: 1e-9,
+            constraint_tolerance: 1e-10,
+            max_backtracks: 30,
+            max_dual_iterations: 500,
+            project_hessians: false,
+            linear: LinearSolver::Direct,
+        }
+    }
+}

@@ -1,0 +1,368 @@
+//! The stepping drivers (quasi-static load stepping and implicit Euler) and their results.
+
+use crate::dual;
+use crate::model::{Model, Strategy};
+use crate::newton::Newton;
+use crate::saddle::SaddleNewton;
+use crate::step::{norm, StepTarget};
+use crate::system::System;
+use crate::terms::Inertia;
+use crate::{Method, Problem, Settings, SolverError, StepReport};
+use isochor_energies::{tet, Hyperelastic};
+use isochor_mesh::{TetMesh, Vec3};
+use std::time::{Duration, Instant};
+
+/// How time or load advances.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stepping {
+    /// Loads and prescribed motions ramped linearly over `steps` equilibrium solves.
+    QuasiStatic { steps: usize },
+    /// Implicit Euler (eq. 20-21) with time step `dt` for `frames` steps; prescribed
+    /// motions follow `t = time / (dt * frames)`, loads are constant.
+    ImplicitEuler { dt: f64, frames: usize },
+}
+
+/// The unknowns of a simulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Positions.
+    pub positions: Vec<Vec3>,
+    /// Velocities (zero in quasi-static stepping).
+    pub velocities: Vec<Vec3>,
+    /// Pressures or multipliers, one per constraint (empty for `standard`).
+    pub multipliers: Vec<f64>,
+    /// Load parameter or time of this state.
+    pub t: f64,
+}
+
+/// Energies of a state, for plots of energy against time.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Energies {
+    /// Kinetic energy `v^T M v / 2`.
+    pub kinetic: f64,
+    /// Stored elastic energy (including epidermis).
+    pub elastic: f64,
+    /// Potential of the external loads (gravity, tractions, pressure).
+    pub external: f64,
+}
+
+/// What the observer sees after each accepted step.
+#[derive(Debug)]
+pub struct Frame<'a> {
+    /// Step or frame index, from 1.
+    pub index: usize,
+    /// The accepted state.
+    pub state: &'a State,
+    /// Pressure per tet (see [`crate::Simulation::tet_pressures`]).
+    pub tet_pressures: Vec<f64>,
+    /// Energies of the state.
+    pub energies: Energies,
+    /// Tets with non-positive volume in this state.
+    pub inverted_tets: usize,
+    /// The step's iteration log.
+    pub report: &'a StepReport,
+}
+
+/// A run that ended early: why, the last accepted state, and every step's log.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("step {failed_step} failed: {error}")]
+pub struct SimulationFailure {
+    /// What went wrong.
+    #[source]
+    pub error: SolverError,
+    /// The step that failed (1-based).
+    pub failed_step: usize,
+    /// The last converged state (the rest state if the first step failed).
+    pub last_state: State,
+    /// Reports of every step, the failed one last.
+    pub reports: Vec<StepReport>,
+}
+
+/// A completed run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// Reports of every step.
+    pub reports: Vec<StepReport>,
+    /// The final state.
+    pub final_state: State,
+    /// The most inverted tets in any accepted state.
+    pub max_inverted_tets: usize,
+    /// Wall time of the whole run.
+    pub wall_time: Duration,
+}
+
+impl RunSummary {
+    /// Newton (or dual) iterations over all steps.
+    pub fn newton_iterations(&self) -> usize {
+        self.reports.iter().map(StepReport::newton_iterations).sum()
+    }
+}
+
+/// A problem turned into a model, with its current state.
+#[derive(Debug)]
+pub struct Simulation {
+    model: Model,
+    settings: Settings,
+    state: State,
+}
+
+/// The nonlinear solver of a run.
+enum Solver {
+    Newton(Newton),
+    Saddle(SaddleNewton),
+    Dual(Newton),
+}
+
+impl Simulation {
+    /// Builds the model of `problem` (only the terms it names) at its rest state.
+    pub fn new(problem: Problem, settings: Settings) -> Result<Self, SolverError> {
+        check_settings(&settings)?;
+        let model = Model::new(problem, settings.project_hessians)?;
+        let n = model.mesh.num_vertices();
+        let m = model.row_volumes.len();
+        let state = State {
+            positions: model.mesh.positions().to_vec(),
+            velocities: vec![Vec3::zeros(); n],
+            multipliers: vec![0.0; if model.strategy == Strategy::Minimize { 0 } else { m }],
+            t: 0.0,
+        };
+        Ok(Simulation {
+            model,
+            settings,
+            state,
+        })
+    }
+
+    /// The mesh in its rest configuration.
+    pub fn mesh(&self) -> &TetMesh {
+        &self.model.mesh
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.model.method
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Unknowns of the linear systems: free displacement DOFs plus multipliers.
+    pub fn num_dofs(&self) -> usize {
+        self.model.dofs.num_free() + self.state.multipliers.len()
+    }
+
+    /// Rest volume measured by each constraint (empty for `standard` and `condensed`).
+    pub fn constraint_volumes(&self) -> &[f64] {
+        &self.model.row_volumes
+    }
+
+    /// The force scale tolerances are relative to: the larger of the external load's norm
+    /// at full load and `mu h^2 sqrt(n)` (a unit strain's nodal force over the mesh).
+    pub fn force_scale(&self) -> Result<f64, SolverError> {
+        let x = self.model.mesh.positions();
+        let mut external = vec![0.0; 3 * x.len()];
+        for term in self.model.terms.iter().filter(|t| t.is_external()) {
+            term.evaluate(x, 1.0, Some(&mut external), None)?;
+        }
+        let mesh = &self.model.mesh;
+        let h2 = (mesh.rest_volume() / mesh.num_tets() as f64).powf(2.0 / 3.0);
+        let elastic = self.model.mu() * h2 * (mesh.num_vertices() as f64).sqrt();
+        Ok(norm(&self.model.dofs.gather(&external)).max(elastic))
+    }
+
+    /// Pressure per tet at `state`: for `standard`, the mean Cauchy stress `tr(sigma)/3`;
+    /// for the mixed and dual methods, the constraint pressures (P0 value, P1 average, `p/J`
+    /// for the logarithmic measure); for `zonal`, the zone multipliers plus the mean stress
+    /// of the energy (its penalty's `lambda U'(J)`, sec. 8.2 of Sheen et al. 2021).
+    pub fn tet_pressures(&self, state: &State) -> Vec<f64> {
+        let x = &state.positions;
+        let constrained = match &self.model.constraints {
+            Some(c) if state.multipliers.len() == c.num_constraints() => Some(c.tet_pressures(x, &state.multipliers)),
+            _ => None,
+        };
+        let material_pressure = |e: usize| mean_stress(self.model.elastic_material.as_ref(), &self.model.mesh, e, x);
+        (0..self.model.mesh.num_tets())
+            .map(|e| match (&constrained, self.model.method) {
+                (None, _) => material_pressure(e),
+                (Some(p), Method::Zonal) => p[e] + material_pressure(e),
+                (Some(p), _) => p[e],
+            })
+            .collect()
+    }
+
+    /// Energies of `state`.
+    pub fn energies(&self, state: &State) -> Energies {
+        let mut energies = Energies {
+            kinetic: 0.5
+                * self
+                    .model
+                    .masses
+                    .iter()
+                    .zip(&state.velocities)
+                    .map(|(m, v)| m * v.norm_squared())
+                    .sum::<f64>(),
+            ..Energies::default()
+        };
+        for term in &self.model.terms {
+            let e = term.evaluate(&state.positions, 1.0, None, None).unwrap_or(f64::NAN);
+            if term.is_external() {
+                energies.external += e;
+            } else {
+                energies.elastic += e;
+            }
+        }
+        energies
+    }
+
+    /// Runs `stepping` from the current state, calling `observer` after every accepted step.
+    /// On failure the state is left at the last accepted step, which the error carries too.
+    pub fn run(
+        &mut self,
+        stepping: Stepping,
+        mut observer: impl FnMut(&Frame<'_>),
+    ) -> Result<RunSummary, SimulationFailure> {
+        let start = Instant::now();
+        let mut reports = Vec::new();
+        let fail = |error: SolverError, step: usize, state: &State, reports: &Vec<StepReport>| SimulationFailure {
+            error,
+            failed_step: step,
+            last_state: state.clone(),
+            reports: reports.clone(),
+        };
+        let (steps, dt) = match stepping {
+            Stepping::QuasiStatic { steps } => (steps, None),
+            Stepping::ImplicitEuler { dt, frames } => (frames, Some(dt)),
+        };
+        if let Err(e) = check_stepping(stepping) {
+            return Err(fail(e, 0, &self.state, &reports));
+        }
+        let force_tolerance = match self.force_scale() {
+            Ok(scale) => self.settings.force_tolerance * scale,
+            Err(e) => return Err(fail(e, 0, &self.state, &reports)),
+        };
+        let inertia = dt.map(|dt| Inertia::new(self.model.masses.clone(), dt));
+        let setup = (|| {
+            let system = System::new(&self.model, inertia, self.settings)?;
+            let solver = match self.model.strategy {
+                Strategy::Minimize => Solver::Newton(Newton::new(&system)?),
+                Strategy::Dual => Solver::Dual(Newton::new(&system)?),
+                Strategy::SaddleDirect | Strategy::SaddleSchur => Solver::Saddle(SaddleNewton::new(&system)?),
+            };
+            Ok::<_, SolverError>((system, solver))
+        })();
+        let (mut system, mut solver) = match setup {
+            Ok(s) => s,
+            Err(e) => return Err(fail(e, 0, &self.state, &reports)),
+        };
+        if !system.is_valid(&self.state.positions) {
+            let e = SolverError::InvalidInitialState(format!(
+                "{} tets are inverted or degenerate where the energy is undefined",
+                self.model.mesh.count_inverted(&self.state.positions)
+            ));
+            return Err(fail(e, 1, &self.state, &reports));
+        }
+        let mut max_inverted = self.model.mesh.count_inverted(&self.state.positions);
+        for step in 1..=steps {
+            let step_start = Instant::now();
+            let fraction = step as f64 / steps as f64;
+            let (load, t) = match dt {
+                None => (fraction, fraction),
+                Some(dt) => (1.0, step as f64 * dt),
+            };
+            if let Some(inertia) = &mut system.inertia {
+                inertia.begin_step(&self.state.positions, &self.state.velocities);
+            }
+            let target = StepTarget {
+                load,
+                prescribed: self.model.dofs.targets(self.model.mesh.positions(), fraction).collect(),
+                force_tolerance,
+            };
+            let mut x = self.state.positions.clone();
+            let mut p = self.state.multipliers.clone();
+            let mut report = StepReport {
+                step,
+                t,
+                ..StepReport::default()
+            };
+            let result = match &mut solver {
+                Solver::Newton(newton) => newton.minimize(&mut system, &mut x, &target, &mut report),
+                Solver::Saddle(saddle) => saddle.solve(&mut system, &mut x, &mut p, &target, &mut report),
+                Solver::Dual(newton) => dual::solve(newton, &mut system, &mut x, &mut p, &target, &mut report),
+            };
+            report.wall_time = step_start.elapsed();
+            reports.push(report);
+            if let Err(e) = result {
+                return Err(fail(e, step, &self.state, &reports));
+            }
+            let velocities = match dt {
+                Some(dt) => x
+                    .iter()
+                    .zip(&self.state.positions)
+                    .map(|(a, b)| (a - b) / dt)
+                    .collect(),
+                None => self.state.velocities.clone(),
+            };
+            self.state = State {
+                positions: x,
+                velocities,
+                multipliers: p,
+                t,
+            };
+            let inverted = self.model.mesh.count_inverted(&self.state.positions);
+            max_inverted = max_inverted.max(inverted);
+            let report = reports.last().expect("pushed above");
+            observer(&Frame {
+                index: step,
+                state: &self.state,
+                tet_pressures: self.tet_pressures(&self.state),
+                energies: self.energies(&self.state),
+                inverted_tets: inverted,
+                report,
+            });
+        }
+        Ok(RunSummary {
+            reports,
+            final_state: self.state.clone(),
+            max_inverted_tets: max_inverted,
+            wall_time: start.elapsed(),
+        })
+    }
+}
+
+/// Mean Cauchy stress `tr(P F^T) / (3 J)` of tet `e` (NaN where the energy is undefined).
+fn mean_stress(material: &dyn Hyperelastic, mesh: &TetMesh, e: usize, x: &[Vec3]) -> f64 {
+    let xe = mesh.tets()[e].map(|i| x[i]);
+    let f = tet::deformation_gradient(&xe, &mesh.inverse_rest_shapes()[e]);
+    let j = f.determinant();
+    material
+        .pk1(&f)
+        .map(|p| (p * f.transpose()).trace() / (3.0 * j))
+        .unwrap_or(f64::NAN)
+}
+
+fn check_settings(s: &Settings) -> Result<(), SolverError> {
+    let bad = |what: &str| Err(SolverError::InvalidProblem(format!("invalid solver setting: {what}")));
+    if s.max_iterations == 0 {
+        return bad("max_iterations must be at least 1");
+    }
+    if !(s.force_tolerance > 0.0 && s.force_tolerance.is_finite()) {
+        return bad("force_tolerance must be positive");
+    }
+    if !(s.constraint_tolerance > 0.0 && s.constraint_tolerance.is_finite()) {
+        return bad("constraint_tolerance must be positive");
+    }
+    Ok(())
+}
+
+fn check_stepping(stepping: Stepping) -> Result<(), SolverError> {
+    match stepping {
+        Stepping::QuasiStatic { steps: 0 } => Err(SolverError::InvalidProblem("steps must be at least 1".into())),
+        Stepping::ImplicitEuler { frames: 0, .. } => Err(SolverError::InvalidProblem("frames must be at least 1".into())),
+        Stepping::ImplicitEuler { dt, .. } if !(dt > 0.0 && dt.is_finite()) => {
+            Err(SolverError::InvalidProblem(format!("dt = {dt} must be positive")))
+        }
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,50 @@
+//! What one step asks of a nonlinear solver, and small vector helpers shared by them.
+
+use isochor_mesh::Vec3;
+
+/// The goal of one load or time step.
+#[derive(Debug, Clone)]
+pub struct StepTarget {
+    /// Load parameter the external terms are scaled by.
+    pub load: f64,
+    /// Target values of the prescribed DOFs.
+    pub prescribed: Vec<(usize, f64)>,
+    /// Absolute force residual tolerance.
+    pub force_tolerance: f64,
+}
+
+/// Full-space vector of prescribed increments `target - x` (zero on free DOFs).
+pub fn gap(x: &[Vec3], prescribed: &[(usize, f64)], len: usize) -> Vec<f64> {
+    let mut d = vec![0.0; len];
+    for &(dof, value) in prescribed {
+        d[dof] = value - x[dof / 3][dof % 3];
+    }
+    d
+}
+
+/// `x += alpha d` for positions and a full-space vector.
+pub fn add_scaled(x: &mut [Vec3], d: &[f64], alpha: f64) {
+    for (i, xi) in x.iter_mut().enumerate() {
+        for k in 0..3 {
+            xi[k] += alpha * d[3 * i + k];
+        }
+    }
+}
+
+/// Euclidean norm.
+pub fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|a| a * a).sum::<f64>().sqrt()
+}
+
+/// Max norm.
+pub fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, a| m.max(a.abs()))
+}
+
+/// Sets the prescribed DOFs exactly to their targets (after a full step, so that rounding
+/// in `x + (target - x)` never leaves a spurious gap).
+pub fn snap(x: &mut [Vec3], prescribed: &[(usize, f64)]) {
+    for &(dof, value) in prescribed {
+        x[dof / 3][dof % 3] = value;
+    }
+}

@@ -1,0 +1,161 @@
+//! The assembled view of a model that the nonlinear solvers iterate on: every term's
+//! energy, gradient and Hessian values in one flat buffer (plus the geometric stiffness of
+//! the constraints), the constraint values and Jacobian, all mapped to free DOFs through
+//! layouts built once per run.
+
+use crate::assembly::Layout;
+use crate::model::{Model, Strategy};
+use crate::terms::{EnergyTerm, Inertia};
+use crate::{Settings, SolverError};
+use isochor_mesh::Vec3;
+use std::time::{Duration, Instant};
+
+/// What one evaluation produced.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    /// Total energy of the terms.
+    pub energy: f64,
+    /// Full-space gradient (length `3n`).
+    pub gradient: Vec<f64>,
+}
+
+/// A model with its inertia (in dynamics), layouts and buffers.
+#[derive(Debug)]
+pub struct System<'m> {
+    pub model: &'m Model,
+    pub inertia: Option<Inertia>,
+    pub settings: Settings,
+    /// Start of each term's block in `hessian_values`; the last block is the constraints'
+    /// geometric stiffness.
+    offsets: Vec<usize>,
+    pub hessian: Layout,
+    pub hessian_values: Vec<f64>,
+    /// Constraint Jacobian layout and values (saddle-point and dual strategies).
+    pub jacobian: Option<Layout>,
+    pub jacobian_values: Vec<f64>,
+    /// Time spent assembling since the last [`System::take_assembly_time`].
+    assembly_time: Duration,
+}
+
+impl<'m> System<'m> {
+    /// Layouts for `model`, with the inertia term of implicit Euler if given.
+    pub fn new(model: &'m Model, inertia: Option<Inertia>, settings: Settings) -> Result<Self, SolverError> {
+        let mut pairs = Vec::new();
+        let mut offsets = vec![0];
+        let mut push = |p: Vec<(usize, usize)>| {
+            pairs.extend(p);
+            offsets.push(pairs.len());
+        };
+        for term in model.terms.iter().map(|t| t.as_ref() as &dyn EnergyTerm) {
+            push(term.hessian_pattern());
+        }
+        if let Some(a) = &model.augmented {
+            push(a.hessian_pattern());
+        }
+        if let Some(i) = &inertia {
+            push(i.hessian_pattern());
+        }
+        let saddle = matches!(model.strategy, Strategy::SaddleDirect | Strategy::SaddleSchur);
+        let (jacobian, jacobian_len) = match &model.constraints {
+            Some(c) => {
+                if saddle {
+                    push(c.geometric_stiffness_pattern());
+                }
+                let g = c.jacobian_pattern();
+                (Some(Layout::jacobian(&g, c.num_constraints(), &model.dofs)?), g.len())
+            }
+            None => (None, 0),
+        };
+        let hessian = Layout::hessian(&pairs, &model.dofs)?;
+        Ok(System {
+            model,
+            inertia,
+            settings,
+            hessian_values: vec![0.0; pairs.len()],
+            offsets,
+            hessian,
+            jacobian,
+            jacobian_values: vec![0.0; jacobian_len],
+            assembly_time: Duration::ZERO,
+        })
+    }
+
+    /// Every energy term: the model's, the folded constraints of the dual/condensed solvers,
+    /// and the inertia.
+    fn terms(&self) -> impl Iterator<Item = &dyn EnergyTerm> {
+        self.model
+            .terms
+            .iter()
+            .map(|t| t.as_ref() as &dyn EnergyTerm)
+            .chain(self.model.augmented.iter().map(|a| a as &dyn EnergyTerm))
+            .chain(self.inertia.iter().map(|i| i as &dyn EnergyTerm))
+    }
+
+    /// Energy (and gradient) of all terms at `x`, without touching the Hessian.
+    pub fn energy(&mut self, x: &[Vec3], load: f64, with_gradient: bool) -> Result<Evaluation, SolverError> {
+        let start = Instant::now();
+        let mut gradient = vec![0.0; if with_gradient { 3 * x.len() } else { 0 }];
+        let mut energy = 0.0;
+        for term in self.terms() {
+            let g = with_gradient.then_some(gradient.as_mut_slice());
+            energy += term.evaluate(x, load, g, None)?;
+        }
+        self.assembly_time += start.elapsed();
+        Ok(Evaluation { energy, gradient })
+    }
+
+    /// Energy, gradient and Hessian values of all terms at `x`; with `multipliers`, also
+    /// the constraints' geometric stiffness (eq. 23) into the last block and their Jacobian.
+    pub fn assemble(
+        &mut self,
+        x: &[Vec3],
+        load: f64,
+        multipliers: Option<&[f64]>,
+    ) -> Result<Evaluation, SolverError> {
+        let start = Instant::now();
+        let mut gradient = vec![0.0; 3 * x.len()];
+        let mut values = std::mem::take(&mut self.hessian_values);
+        let result = self.fill(x, load, multipliers, &mut gradient, &mut values);
+        self.hessian_values = values;
+        let energy = result?;
+        self.assembly_time += start.elapsed();
+        Ok(Evaluation { energy, gradient })
+    }
+
+    fn fill(
+        &mut self,
+        x: &[Vec3],
+        load: f64,
+        multipliers: Option<&[f64]>,
+        gradient: &mut [f64],
+        values: &mut [f64],
+    ) -> Result<f64, SolverError> {
+        let mut energy = 0.0;
+        let mut rest = values;
+        for (block, term) in self.terms().enumerate() {
+            let len = self.offsets[block + 1] - self.offsets[block];
+            let (mine, tail) = rest.split_at_mut(len);
+            rest = tail;
+            energy += term.evaluate(x, load, Some(&mut *gradient), Some(mine))?;
+        }
+        if let (Some(c), Some(p)) = (&self.model.constraints, multipliers) {
+            c.geometric_stiffness_values(x, p, rest)?;
+            c.jacobian_values(x, &mut self.jacobian_values)?;
+        }
+        Ok(energy)
+    }
+
+    /// Whether `x` lies in the domain of every term and constraint.
+    pub fn is_valid(&self, x: &[Vec3]) -> bool {
+        self.terms().all(|t| t.is_valid(x))
+            && self.model.constraints.as_ref().is_none_or(|c| {
+                let mut phi = vec![0.0; c.num_constraints()];
+                c.values(x, &mut phi).is_ok()
+            })
+    }
+
+    /// Assembly time since the last call.
+    pub fn take_assembly_time(&mut self) -> Duration {
+        std::mem::take(&mut self.assembly_time)
+    }
+}

@@ -1,0 +1,73 @@
+//! Energy terms: everything that contributes to the objective of a solve is a term with a
+//! value, a gradient, a Hessian whose sparsity pattern is fixed, and a validity check that
+//! line searches use to back off (the "Form" contract of polyfem).
+
+mod augmented;
+mod elastic;
+mod epidermis;
+
+mod gravity;
+mod inertia;
+mod pressure;
+mod traction;
+
+pub use augmented::AugmentedConstraints;
+pub use elastic::Elastic;
+pub use epidermis::EpidermisTerm;
+
+pub use gravity::Gravity;
+pub use inertia::Inertia;
+pub use pressure::FollowerPressure;
+pub use traction::DeadTraction;
+
+use crate::SolverError;
+use isochor_mesh::Vec3;
+
+/// A term of the total energy `E(x)` minimized (or made stationary) by the solvers.
+///
+/// `load` is the load parameter in `[0, 1]` of quasi-static stepping (1 in dynamics): external
+/// loads scale with it, stored energies ignore it.
+pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
+    /// Short name for reports.
+    fn name(&self) -> &'static str;
+
+    /// `(dof, dof)` of every Hessian entry (duplicates summed), fixed for the term's life;
+    /// empty for terms linear in `x`.
+    fn hessian_pattern(&self) -> Vec<(usize, usize)>;
+
+    /// The energy at `x`; adds the gradient into `gradient` (length `3n`) and writes the
+    /// Hessian entries, in pattern order, into `hessian` when asked.
+    fn evaluate(
+        &self,
+        x: &[Vec3],
+        load: f64,
+        gradient: Option<&mut [f64]>,
+        hessian: Option<&mut [f64]>,
+    ) -> Result<f64, SolverError>;
+
+    /// Whether `x` lies in the term's domain (for example no inverted tet under `log J`).
+    fn is_valid(&self, _x: &[Vec3]) -> bool {
+        true
+    }
+
+    /// Whether the term is an external load (its energy is reported as external work).
+    fn is_external(&self) -> bool {
+        false
+    }
+}
+
+/// Dense `(dof, dof)` pattern of the blocks of an element with the given vertices, in the
+/// column-major order of nalgebra's element matrices.
+pub(crate) fn block_pattern<const V: usize>(vertices: &[usize; V]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let dof = move |local: usize| 3 * vertices[local / 3] + local % 3;
+    (0..3 * V).flat_map(move |c| (0..3 * V).map(move |r| (dof(r), dof(c))))
+}
+
+/// Adds an element vector (vertex-major, 3 per vertex) into the global gradient.
+pub(crate) fn scatter<const V: usize>(vertices: &[usize; V], local: &[f64], global: &mut [f64]) {
+    for (a, &v) in vertices.iter().enumerate() {
+        for k in 0..3 {
+            global[3 * v + k] += local[3 * a + k];
+        }
+    }
+}

@@ -1,0 +1,522 @@
+//! Tests of the linear-algebra layer against dense nalgebra references, and on a P1-P1
+//! saddle point of a structured tet box at `C = 0` (exactly singular KKT).
+
+use faer::sparse::SparseColMat;
+use isochor_mesh::generate::box_grid;
+use isochor_mesh::Vec3;
+use isochor_solvers::linear::{
+    cg, diagonal, minres, relative_residual, saddle_point_diagonal, CholeskySolver,
+    IterativeOptions, Jacobi, KktOptions, KktSolver, LinearError, LinearOperator, SaddlePoint,
+    ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
+};
+use nalgebra::{DMatrix, DVector, Matrix3};
+
+/// Deterministic pseudo-random numbers in [-1, 1) (xorshift).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+/// Sparse copy of a dense matrix: both triangles for symmetric ones, entries with
+/// `|a| > 0` plus the diagonal.
+fn sparse(a: &DMatrix<f64>) -> SparseColMat<usize, f64> {
+    let mut pairs = Vec::new();
+    let mut vals = Vec::new();
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            if a[(i, j)] != 0.0 || i == j {
+                pairs.push((i, j));
+                vals.push(a[(i, j)]);
+            }
+        }
+    }
+    SparsityPattern::new(a.nrows(), a.ncols(), &pairs, Triangle::Full)
+        .unwrap()
+        .assemble(&vals)
+        .unwrap()
+}
+
+/// Random sparse-ish SPD matrix `B^T B + I` with a banded `B`.
+fn random_spd(n: usize, rng: &mut Rng) -> DMatrix<f64> {
+    let b = DMatrix::from_fn(
+        n,
+        n,
+        |i, j| if i.abs_diff(j) <= 2 { rng.next() } else { 0.0 },
+    );
+    b.transpose() * &b + DMatrix::identity(n, n)
+}
+
+/// Random `m x n` Jacobian with a few entries per row plus a diagonal-like entry (full rank).
+fn random_g(m: usize, n: usize, rng: &mut Rng) -> DMatrix<f64> {
+    DMatrix::from_fn(m, n, |i, j| {
+        if j == 2 * i {
+            2.0 + rng.next()
+        } else if (j + i) % 5 == 0 {
+            rng.next()
+        } else {
+            0.0
+        }
+    })
+}
+
+fn kkt_dense(k: &DMatrix<f64>, g: &DMatrix<f64>, c: &DMatrix<f64>) -> DMatrix<f64> {
+    let (n, m) = (k.nrows(), g.nrows());
+    let mut a = DMatrix::zeros(n + m, n + m);
+    a.view_mut((0, 0), (n, n)).copy_from(k);
+    a.view_mut((n, 0), (m, n)).copy_from(g);
+    a.view_mut((0, n), (n, m)).copy_from(&g.transpose());
+    a.view_mut((n, n), (m, m)).copy_from(&(-c));
+    a
+}
+
+fn dense_solve(a: &DMatrix<f64>, b: &[f64]) -> Vec<f64> {
+    a.clone()
+        .lu()
+        .solve(&DVector::from_column_slice(b))
+        .expect("reference matrix is nonsingular")
+        .as_slice()
+        .to_vec()
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+fn max_abs(a: &[f64]) -> f64 {
+    a.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+#[test]
+fn cholesky_matches_dense_lu_and_reuses_the_symbolic_factorization() {
+    let mut rng = Rng(7);
+    let n = 40;
+    let k = random_spd(n, &mut rng);
+    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let ks = sparse(&k);
+    let mut solver = CholeskySolver::new(ks.symbolic()).unwrap();
+    solver.factorize(ks.as_ref(), 0.0).unwrap();
+    let x = solver.solve(&b).unwrap();
+    let want = dense_solve(&k, &b);
+    assert!(max_diff(&x, &want) < 1e-10 * max_abs(&want));
+    assert!(solver.report().residual < 1e-12);
+
+    // Same pattern, new values: the analysed pattern is reused.
+    let k2 = &k * 3.0 + DMatrix::identity(n, n);
+    let ks2 = sparse(&k2);
+    solver.factorize(ks2.as_ref(), 0.0).unwrap();
+    let x2 = solver.solve(&b).unwrap();
+    let want2 = dense_solve(&k2, &b);
+    assert!(max_diff(&x2, &want2) < 1e-10 * max_abs(&want2));
+
+    // A different pattern is refused.
+    let other = sparse(&DMatrix::identity(n, n));
+    assert_eq!(
+        solver.factorize(other.as_ref(), 0.0),
+        Err(LinearError::PatternMismatch { what: "K" })
+    );
+}
+
+#[test]
+fn cholesky_reports_indefinite_k_and_the_shift_schedule_cures_it() {
+    let mut rng = Rng(11);
+    let n = 20;
+    let mut k = random_spd(n, &mut rng);
+    k[(5, 5)] -= 100.0;
+    let ks = sparse(&k);
+    let mut solver = CholeskySolver::new(ks.symbolic()).unwrap();
+    assert!(matches!(
+        solver.factorize(ks.as_ref(), 0.0),
+        Err(LinearError::NotPositiveDefinite { .. })
+    ));
+    assert!(matches!(
+        solver.solve(&[1.0; 20]),
+        Err(LinearError::NotFactorized)
+    ));
+    let schedule = ShiftSchedule {
+        initial: 1e-3,
+        growth: 10.0,
+        max_attempts: 8,
+    };
+    let shift = solver
+        .factorize_with_shifts(ks.as_ref(), &schedule)
+        .unwrap();
+    assert!(shift > 0.0);
+    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let x = solver.solve(&b).unwrap();
+    let want = dense_solve(&(k + DMatrix::identity(n, n) * shift), &b);
+    assert!(max_diff(&x, &want) < 1e-9 * max_abs(&want));
+    assert!(solver.report().factorizations > 1);
+}
+
+/// Solves the random KKT system with compliance `c` (zero matrix = `C = 0`) and checks
+/// it against dense LU; also the MINRES solution.
+fn check_random_kkt(c_scale: f64, seed: u64) {
+    let mut rng = Rng(seed);
+    let (n, m) = (30, 12);
+    let k = random_spd(n, &mut rng);
+    let g = random_g(m, n, &mut rng);
+    let c = DMatrix::from_fn(m, m, |i, j| {
+        if i == j {
+            c_scale * (1.0 + rng.next().abs())
+        } else {
+            0.0
+        }
+    });
+    let b: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let (ks, gs, cs) = (sparse(&k), sparse(&g), sparse(&c));
+    let c_opt = (c_scale > 0.0).then(|| cs.as_ref());
+    // Anchor constraint i at DOF 2i (its largest G entry); the last row is free.
+    let anchors: Vec<Option<usize>> = (0..m).map(|i| (i + 1 < m).then_some(2 * i)).collect();
+    let mut solver = KktSolver::new(
+        ks.symbolic(),
+        gs.symbolic(),
+        c_opt.map(|c| c.symbolic()),
+        &anchors,
+        KktOptions::default(),
+    )
+    .unwrap();
+    solver
+        .factorize(ks.as_ref(), gs.as_ref(), c_opt, 0.0)
+        .unwrap();
+    let x = solver.solve(&b).unwrap();
+    let want = dense_solve(&kkt_dense(&k, &g, &c), &b);
+    assert!(
+        max_diff(&x, &want) < 1e-10 * max_abs(&want),
+        "C scale {c_scale}"
+    );
+    let report = solver.report().clone();
+    assert!(report.residual < 1e-10, "{report:?}");
+    let inertia = report.inertia.expect("LDL^T inertia");
+    assert_eq!((inertia.positive, inertia.negative), (n, m), "{report:?}");
+
+    // Symbolic reuse: new values on the same pattern give the new solution.
+    let k2 = &k * 2.0;
+    let g2 = &g * 0.5;
+    let ks2 = sparse(&k2);
+    let gs2 = sparse(&g2);
+    solver
+        .factorize(ks2.as_ref(), gs2.as_ref(), c_opt, 0.0)
+        .unwrap();
+    let x2 = solver.solve(&b).unwrap();
+    let want2 = dense_solve(&kkt_dense(&k2, &g2, &c), &b);
+    assert!(max_diff(&x2, &want2) < 1e-10 * max_abs(&want2));
+
+    // MINRES with the saddle-point Jacobi preconditioner matches.
+    let c_op = c_opt.map(SymmetricLower);
+    let op = SaddlePoint {
+        k: &SymmetricLower(ks.as_ref()),
+        g: gs.as_ref(),
+        c: c_op.as_ref().map(|c| c as &dyn LinearOperator),
+    };
+    let c_diag = c_opt.map(diagonal);
+    let pre = Jacobi::from_diagonal(&saddle_point_diagonal(
+        &diagonal(ks.as_ref()),
+        gs.as_ref(),
+        c_diag.as_deref(),
+    ));
+    let mut y = vec![0.0; n + m];
+    let options = IterativeOptions {
+        tolerance: 1e-12,
+        max_iterations: 500,
+    };
+    let it = minres(&op, &pre, &b, &mut y, options).unwrap();
+    assert!(it.residual <= 1e-12);
+    assert!(max_diff(&y, &want) < 1e-8 * max_abs(&want), "{it:?}");
+}
+
+#[test]
+fn kkt_matches_dense_lu_with_compliance() {
+    check_random_kkt(0.1, 3);
+}
+
+#[test]
+fn kkt_matches_dense_lu_at_zero_compliance() {
+    check_random_kkt(0.0, 5);
+}
+
+#[test]
+fn kkt_reports_wrong_inertia_for_negative_curvature_in_the_null_space_of_g() {
+    // G constrains DOFs 0 and 1; DOF 4 is free of constraints and has K_44 < 0.
+    let (n, m) = (6, 2);
+    let mut k = DMatrix::<f64>::identity(n, n) * 2.0;
+    k[(0, 1)] = 0.5;
+    k[(1, 0)] = 0.5;
+    let g = DMatrix::from_fn(m, n, |i, j| if i == j { 1.0 } else { 0.0 });
+    let gs = sparse(&g);
+    let anchors = [Some(0), Some(1)];
+    let solve_with = |k: &DMatrix<f64>| {
+        let ks = sparse(k);
+        let mut s = KktSolver::new(
+            ks.symbolic(),
+            gs.symbolic(),
+            None,
+            &anchors,
+            KktOptions::default(),
+        )
+        .unwrap();
+        s.factorize(ks.as_ref(), gs.as_ref(), None, 0.0).map(|()| s)
+    };
+    let mut bad = k.clone();
+    bad[(4, 4)] = -1.0;
+    match solve_with(&bad) {
+        Err(LinearError::WrongInertia { negative, .. }) => assert_eq!(negative, m + 1),
+        other => panic!("expected wrong inertia, got {other:?}"),
+    }
+    // Negative curvature only along the range of G^T is fine: the constraint removes it.
+    let mut ok = k.clone();
+    ok[(0, 0)] = -1.0;
+    ok[(0, 1)] = 0.0;
+    ok[(1, 0)] = 0.0;
+    let s = solve_with(&ok).unwrap();
+    let inertia = s.report().inertia.unwrap();
+    assert_eq!((inertia.positive, inertia.negative), (n, m));
+    // The shift schedule turns the bad system into a good one.
+    let ks = sparse(&bad);
+    let mut s = KktSolver::new(
+        ks.symbolic(),
+        gs.symbolic(),
+        None,
+        &anchors,
+        KktOptions::default(),
+    )
+    .unwrap();
+    let shift = s
+        .factorize_with_shifts(
+            ks.as_ref(),
+            gs.as_ref(),
+            None,
+            &ShiftSchedule {
+                initial: 0.1,
+                growth: 4.0,
+                max_attempts: 6,
+            },
+        )
+        .unwrap();
+    assert!(shift > 1.0);
+}
+
+/// Gradients of the barycentric coordinates of a tet and its unsigned volume.
+fn barycentric_gradients(x: [Vec3; 4]) -> ([Vec3; 4], f64) {
+    let d = Matrix3::from_columns(&[x[1] - x[0], x[2] - x[0], x[3] - x[0]]);
+    let inv = d.try_inverse().expect("non-degenerate tet");
+    let g1 = inv.row(0).transpose();
+    let g2 = inv.row(1).transpose();
+    let g3 = inv.row(2).transpose();
+    ([-(g1 + g2 + g3), g1, g2, g3], d.determinant().abs() / 6.0)
+}
+
+/// A P1-P1 saddle point on a Kuhn box grid, face `x = 0` clamped: `K = L (x) I3` from the
+/// P1 Laplacian, `G` the nodal volume Jacobian (row `j` = sum over the tets incident to
+/// `j` of `grad v_e / 4`, eq. 26-27), anchors at each node's last free DOF.
+struct P1Box {
+    k: SparseColMat<usize, f64>,
+    g: SparseColMat<usize, f64>,
+    anchors: Vec<Option<usize>>,
+}
+
+fn p1_box(cells: [usize; 3]) -> P1Box {
+    let mesh = box_grid(Vec3::zeros(), Vec3::new(4.0, 1.0, 1.0), cells).unwrap();
+    let x = mesh.positions();
+    let nv = x.len();
+    let mut dof = vec![None; 3 * nv];
+    let mut n = 0;
+    for (v, p) in x.iter().enumerate() {
+        if p.x > 1e-12 {
+            for a in 0..3 {
+                dof[3 * v + a] = Some(n);
+                n += 1;
+            }
+        }
+    }
+    let (mut kp, mut kv, mut gp, mut gv) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for tet in mesh.tets() {
+        let xs = tet.map(|v| x[v]);
+        let (grads, vol) = barycentric_gradients(xs);
+        let e = [xs[1] - xs[0], xs[2] - xs[0], xs[3] - xs[0]];
+        let g1 = e[1].cross(&e[2]) / 6.0;
+        let g2 = e[2].cross(&e[0]) / 6.0;
+        let g3 = e[0].cross(&e[1]) / 6.0;
+        let gv_e = [-(g1 + g2 + g3), g1, g2, g3];
+        for a in 0..4 {
+            for b in 0..4 {
+                for ax in 0..3 {
+                    if let Some(j) = dof[3 * tet[b] + ax] {
+                        gp.push((tet[a], j));
+                        gv.push(0.25 * gv_e[b][ax]);
+                        if let Some(i) = dof[3 * tet[a] + ax] {
+                            kp.push((i, j));
+                            kv.push(vol * grads[a].dot(&grads[b]));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let k = SparsityPattern::new(n, n, &kp, Triangle::Full)
+        .unwrap()
+        .assemble(&kv)
+        .unwrap();
+    let g = SparsityPattern::new(nv, n, &gp, Triangle::Full)
+        .unwrap()
+        .assemble(&gv)
+        .unwrap();
+    let anchors = (0..nv).map(|v| dof[3 * v + 2]).collect();
+    P1Box { k, g, anchors }
+}
+
+/// The C = 0 P1-P1 KKT is singular (spurious pressure modes) but the displacement is
+/// unique: a consistent right-hand side `A (u*, p*)` must give back `u*` exactly.
+#[test]
+fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() {
+    let P1Box { k, g, anchors } = p1_box([6, 3, 3]);
+    let (n, m) = (k.nrows(), g.nrows());
+    let mut rng = Rng(13);
+    let truth: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let op_k = SymmetricLower(k.as_ref());
+    let op = SaddlePoint {
+        k: &op_k,
+        g: g.as_ref(),
+        c: None,
+    };
+    let mut b = vec![0.0; n + m];
+    op.apply(&truth, &mut b);
+
+    let mut solver = KktSolver::new(
+        k.symbolic(),
+        g.symbolic(),
+        None,
+        &anchors,
+        KktOptions::default(),
+    )
+    .unwrap();
+    solver.factorize(k.as_ref(), g.as_ref(), None, 0.0).unwrap();
+    let x = solver.solve(&b).unwrap();
+    let report = solver.report().clone();
+    eprintln!("P1 box n = {n}, m = {m}: {report:?}");
+    assert!(x.iter().all(|v| v.is_finite()));
+    assert!(report.residual < 1e-12, "{report:?}");
+    assert!(relative_residual(&op, &x, &b) < 1e-12);
+    assert!(
+        max_diff(&x[..n], &truth[..n]) < 1e-9 * max_abs(&truth[..n]),
+        "displacement differs"
+    );
+
+    // The displacement agrees with the sparse LU fallback too.
+    let mut lu = KktSolver::new(
+        k.symbolic(),
+        g.symbolic(),
+        None,
+        &anchors,
+        KktOptions {
+            pivot_regularization: None,
+            ..KktOptions::default()
+        },
+    )
+    .unwrap();
+    if lu.factorize(k.as_ref(), g.as_ref(), None, 0.0).is_ok() {
+        if let Ok(y) = lu.solve(&b) {
+            eprintln!("LU-path report: {:?}", lu.report());
+            assert!(max_diff(&x[..n], &y[..n]) < 1e-8 * max_abs(&truth[..n]));
+        }
+    }
+
+    // Krylov solvers on the same system: CG on K, MINRES on the singular KKT.
+    let mut u = vec![0.0; n];
+    let it = cg(
+        &op_k,
+        &Jacobi::from_diagonal(&diagonal(k.as_ref())),
+        &b[..n],
+        &mut u,
+        IterativeOptions {
+            tolerance: 1e-12,
+            max_iterations: 2000,
+        },
+    )
+    .unwrap();
+    let mut chol = CholeskySolver::new(k.symbolic()).unwrap();
+    chol.factorize(k.as_ref(), 0.0).unwrap();
+    let u_direct = chol.solve(&b[..n]).unwrap();
+    assert!(
+        max_diff(&u, &u_direct) < 1e-9 * max_abs(&u_direct),
+        "CG {it:?}"
+    );
+
+    let pre = Jacobi::from_diagonal(&saddle_point_diagonal(
+        &diagonal(k.as_ref()),
+        g.as_ref(),
+        None,
+    ));
+    let mut y = vec![0.0; n + m];
+    let it = minres(
+        &op,
+        &pre,
+        &b,
+        &mut y,
+        IterativeOptions {
+            tolerance: 1e-11,
+            max_iterations: 5000,
+        },
+    )
+    .unwrap();
+    assert!(
+        max_diff(&y[..n], &truth[..n]) < 1e-7 * max_abs(&truth[..n]),
+        "MINRES {it:?}"
+    );
+}
+
+/// Conjugate gradients on an indefinite operator is a breakdown, not a wrong answer;
+/// running out of iterations carries the residual.
+#[test]
+fn krylov_failures_are_error_values() {
+    let a = sparse(&DMatrix::from_diagonal(&DVector::from_vec(vec![
+        1.0, -1.0, 2.0,
+    ])));
+    let op = a.as_ref();
+    let b = [1.0, 1.0, 1.0];
+    let mut x = [0.0; 3];
+    let pre = Jacobi::identity(3);
+    assert!(matches!(
+        cg(
+            &op as &dyn LinearOperator,
+            &pre,
+            &b,
+            &mut x,
+            IterativeOptions::default()
+        ),
+        Err(LinearError::Breakdown { .. })
+    ));
+    let spd = sparse(&random_spd(50, &mut Rng(3)));
+    let mut x = vec![0.0; 50];
+    let err = cg(
+        &SymmetricLower(spd.as_ref()),
+        &Jacobi::identity(50),
+        &[1.0; 50],
+        &mut x,
+        IterativeOptions {
+            tolerance: 1e-14,
+            max_iterations: 2,
+        },
+    );
+    assert!(
+        matches!(err, Err(LinearError::NotConverged { iterations: 2, residual, .. }) if residual > 0.0)
+    );
+    assert!(matches!(
+        minres(
+            &op as &dyn LinearOperator,
+            &pre,
+            &[1.0; 2],
+            &mut [0.0; 3],
+            IterativeOptions::default()
+        ),
+        Err(LinearError::DimensionMismatch { .. })
+    ));
+}

@@ -1,0 +1,615 @@
+//! Finite-difference validation of the energy layer: every density's `P` against differences
+//! of `Psi` and `dP/dF` against differences of `P`, the penalties, the tet and triangle
+//! kernels, rest stability, the penalty conditions of Sheen et al. 2021 (sec. 5), PSD
+//! projection and parameter validation.
+//!
+//! One harness, every term: [`density_suite!`] turns one line per density into its full set of
+//! property tests; [`penalty_suite!`] does the same for penalties.
+
+use isochor_energies::{
+    constrained_neo_hookean, kinematics, project_to_psd, quadratic_neo_hookean,
+    standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean, Epidermis,
+    FbarNeoHookean, Hyperelastic, Lame, LogPenalty, Matrix12, Mooney, QuadraticPenalty,
+    SheenPenalty, StableNeoHookean, VolumetricPenalty,
+};
+use isochor_validation::fd::{self, relative_error, relative_error_vec};
+use isochor_validation::strategies::{
+    max_edge, near_identity, rest_tet, rest_triangle, with_determinant,
+};
+use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen, Vector3};
+use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
+
+/// Finite-difference agreement required everywhere (relative, max norm).
+const TOLERANCE: f64 = 1e-6;
+
+/// Material parameters drawn for each case.
+#[derive(Debug, Clone, Copy)]
+struct Params {
+    mu: f64,
+    lambda: f64,
+    beta: f64,
+    epsilon: f64,
+}
+
+fn params() -> impl Strategy<Value = Params> {
+    (0.1..10.0f64, 0.05..200.0f64, 0.0..20.0f64, 0.01..0.5f64).prop_map(
+        |(mu, lambda, beta, epsilon)| Params {
+            mu,
+            lambda,
+            beta,
+            epsilon,
+        },
+    )
+}
+
+fn to_dvec(f: &Matrix3<f64>) -> DVector<f64> {
+    DVector::from_column_slice(f.as_slice())
+}
+
+fn to_mat(v: &DVector<f64>) -> Matrix3<f64> {
+    Matrix3::from_column_slice(v.as_slice())
+}
+
+/// `P` against central differences of `Psi`, `dP/dF` against central differences of `P`, and
+/// symmetry of `dP/dF`. The step is relative to the size of `F`; the floor of the relative
+/// error is the material's modulus `mu` (the natural scale of `P` and `dP/dF` near rest).
+fn check_derivatives<M: Hyperelastic + ?Sized>(
+    m: &M,
+    f: &Matrix3<f64>,
+    mu: f64,
+) -> Result<(), TestCaseError> {
+    let x = to_dvec(f);
+    let h = fd::STEP * f.amax();
+    let psi = |v: &DVector<f64>| m.energy_density(&to_mat(v)).expect("inside the domain");
+    let pk1 = |v: &DVector<f64>| to_dvec(&m.pk1(&to_mat(v)).expect("inside the domain"));
+
+    let p = to_dvec(&m.pk1(f).map_err(|e| TestCaseError::fail(e.to_string()))?);
+    let p_fd = fd::gradient(psi, &x, h);
+    let err = relative_error_vec(&p, &p_fd, mu);
+    prop_assert!(
+        err < TOLERANCE,
+        "{}: P vs FD of Psi, relative error {err:e}",
+        m.name()
+    );
+
+    let a = m
+        .pk1_derivative(f)
+        .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let a = DMatrix::from_column_slice(9, 9, a.as_slice());
+    let a_fd = fd::jacobian(pk1, &x, h);
+    let err = relative_error(&a, &a_fd, mu);
+    prop_assert!(
+        err < TOLERANCE,
+        "{}: dP/dF vs FD of P, relative error {err:e}",
+        m.name()
+    );
+    let asym = relative_error(&a, &a.transpose(), mu);
+    prop_assert!(asym < 1e-12, "{}: dP/dF not symmetric ({asym:e})", m.name());
+    Ok(())
+}
+
+/// Outside the domain every evaluation is an [`isochor_energies::OutOfDomain`] error, never NaN.
+fn check_refuses<M: Hyperelastic + ?Sized>(m: &M, f: &Matrix3<f64>) -> Result<(), TestCaseError> {
+    let j = f.determinant();
+    prop_assert!(!m.is_defined_at(j));
+    prop_assert!(
+        m.energy_density(f).is_err(),
+        "{} gave an energy at J = {j}",
+        m.name()
+    );
+    prop_assert!(m.pk1(f).is_err(), "{} gave a stress at J = {j}", m.name());
+    prop_assert!(
+        m.pk1_derivative(f).is_err(),
+        "{} gave a tangent at J = {j}",
+        m.name()
+    );
+    Ok(())
+}
+
+/// Checks derivatives where the density is defined at `det F`, else that it refuses.
+fn check_or_refuse<M: Hyperelastic + ?Sized>(
+    m: &M,
+    f: &Matrix3<f64>,
+    mu: f64,
+) -> Result<(), TestCaseError> {
+    if m.is_defined_at(f.determinant()) {
+        check_derivatives(m, f, mu)
+    } else {
+        check_refuses(m, f)
+    }
+}
+
+/// One module of property tests per density: regular (`det F` in `[0.05, 20]`), near-singular
+/// (`det F ~ 1e-3`), inverted (`det F < 0`, checked where the density is defined and refused
+/// elsewhere), plus rest stability: `P(I) = 0` when `rest_stable`, `P(I) != 0` otherwise.
+macro_rules! density_suite {
+    ($($name:ident => |$p:ident| $build:expr, rest_stable = $rest:expr;)*) => {$(
+        mod $name {
+            use super::*;
+
+            fn build($p: &Params) -> impl Hyperelastic {
+                $build
+            }
+
+            proptest! {
+                #![proptest_config(ProptestConfig::with_cases(64))]
+
+                #[test]
+                fn derivatives_regular(p in params(), f in with_determinant(0.05, 20.0, false)) {
+                    check_derivatives(&build(&p), &f, p.mu)?;
+                }
+
+                #[test]
+                fn derivatives_near_identity(p in params(), f in near_identity(0.3)) {
+                    check_or_refuse(&build(&p), &f, p.mu)?;
+                }
+
+                #[test]
+                fn derivatives_near_singular(p in params(), f in with_determinant(5e-4, 2e-3, false)) {
+                    check_derivatives(&build(&p), &f, p.mu)?;
+                }
+
+                #[test]
+                fn derivatives_inverted(
+                    p in params(),
+                    f in prop_oneof![
+                        with_determinant(0.05, 20.0, true),
+                        with_determinant(5e-4, 2e-3, true),
+                    ],
+                ) {
+                    check_or_refuse(&build(&p), &f, p.mu)?;
+                }
+            }
+
+            #[test]
+            fn rest_stability() {
+                let p = Params { mu: 1.7, lambda: 23.0, beta: 3.0, epsilon: 0.1 };
+                let m = build(&p);
+                let stress = m.pk1(&Matrix3::identity()).unwrap().amax();
+                if $rest {
+                    assert!(stress < 1e-13 * (p.mu + p.lambda), "{}: P(I) = {stress:e}", m.name());
+                } else {
+                    assert!(stress > 0.1 * p.mu, "{} should not be rest stable", m.name());
+                }
+            }
+        }
+    )*};
+}
+
+// Rest stability as claimed by the papers: standard neo-Hookean (eq. 6 / eq. 4), distortional
+// neo-Hookean (eq. 32), Bonet-Wood (eq. 30), Stable neo-Hookean, F-bar deviatoric (eq. 12) and
+// the composed constrained neo-Hookean are rest stable. Mooney (eq. 29) is not: P(I) = mu I.
+density_suite! {
+    mooney => |p| Mooney::new(p.mu).unwrap(), rest_stable = false;
+    distortional_neo_hookean => |p| DistortionalNeoHookean::new(p.mu).unwrap(), rest_stable = true;
+    bonet_wood => |p| BonetWood::new(p.mu).unwrap(), rest_stable = true;
+    stable_neo_hookean => |p| StableNeoHookean::new(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
+        rest_stable = true;
+    stable_neo_hookean_linear_lame =>
+        |p| StableNeoHookean::from_linear_lame(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
+        rest_stable = true;
+    fbar_neo_hookean => |p| FbarNeoHookean::new(p.mu, p.epsilon).unwrap(), rest_stable = true;
+    standard_neo_hookean_ => |p| standard_neo_hookean(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
+        rest_stable = true;
+    quadratic_neo_hookean_ => |p| quadratic_neo_hookean(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
+        rest_stable = true;
+    constrained_neo_hookean_ =>
+        |p| constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).unwrap(),
+        rest_stable = true;
+}
+
+/// The densities that must accept inverted and singular `F`.
+#[test]
+fn invertible_densities_are_defined_everywhere() {
+    let lame = Lame::new(1.0, 10.0).unwrap();
+    let invertible: Vec<Box<dyn Hyperelastic>> = vec![
+        Box::new(Mooney::new(1.0).unwrap()),
+        Box::new(StableNeoHookean::new(lame).unwrap()),
+        Box::new(FbarNeoHookean::new(1.0, 0.1).unwrap()),
+        Box::new(constrained_neo_hookean(1.0, 10.0, 2.0, 0.1).unwrap()),
+    ];
+    let flat = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 0.0));
+    for m in &invertible {
+        for j in [-5.0, -1e-3, 0.0, 1e-3] {
+            assert!(m.is_defined_at(j), "{}", m.name());
+        }
+        let p = m.pk1(&flat).unwrap();
+        let a = m.pk1_derivative(&flat).unwrap();
+        assert!(
+            p.iter().chain(a.iter()).all(|v| v.is_finite()),
+            "{}",
+            m.name()
+        );
+    }
+    let singular: Vec<Box<dyn Hyperelastic>> = vec![
+        Box::new(DistortionalNeoHookean::new(1.0).unwrap()),
+        Box::new(BonetWood::new(1.0).unwrap()),
+        Box::new(standard_neo_hookean(lame).unwrap()),
+        Box::new(quadratic_neo_hookean(lame).unwrap()),
+    ];
+    for m in &singular {
+        assert!(m.energy_density(&flat).is_err() && m.pk1_derivative(&flat).is_err());
+    }
+}
+
+/// The F-bar deviatoric energy equals Bonet-Wood above `epsilon` (eq. 11 with `alpha = J^-1/3`).
+#[test]
+fn fbar_equals_bonet_wood_above_epsilon() {
+    let (fbar, bw) = (
+        FbarNeoHookean::new(2.0, 0.1).unwrap(),
+        BonetWood::new(2.0).unwrap(),
+    );
+    let f = Matrix3::new(1.1, 0.3, 0.0, -0.2, 0.7, 0.1, 0.0, 0.2, 0.9);
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1.0);
+    assert!(
+        rel(
+            fbar.energy_density(&f).unwrap(),
+            bw.energy_density(&f).unwrap()
+        ) < 1e-14
+    );
+    assert!((fbar.pk1(&f).unwrap() - bw.pk1(&f).unwrap()).amax() < 1e-13);
+    assert!((fbar.pk1_derivative(&f).unwrap() - bw.pk1_derivative(&f).unwrap()).amax() < 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Penalties
+
+/// `U'` against differences of `U` and `U''` against differences of `U'` at `J` (step relative
+/// to `max(|J|, 1)`, floor 1: the scale of `U''(1) = 1`).
+fn check_penalty<U: VolumetricPenalty>(u: &U, j: f64) -> Result<(), TestCaseError> {
+    let h = fd::STEP * j.abs().max(1.0);
+    let rel = |a: f64, b: f64| (a - b).abs() / a.abs().max(b.abs()).max(1.0);
+    let d1 = u.first_derivative(j).unwrap();
+    let d1_fd = (u.value(j + h).unwrap() - u.value(j - h).unwrap()) / (2.0 * h);
+    prop_assert!(rel(d1, d1_fd) < TOLERANCE, "{}: U' at J = {j}", u.name());
+    let d2 = u.second_derivative(j).unwrap();
+    let d2_fd =
+        (u.first_derivative(j + h).unwrap() - u.first_derivative(j - h).unwrap()) / (2.0 * h);
+    prop_assert!(rel(d2, d2_fd) < TOLERANCE, "{}: U'' at J = {j}", u.name());
+    Ok(())
+}
+
+/// One property test per penalty over `J` in `[j_min, j_max]`.
+macro_rules! penalty_suite {
+    ($($name:ident => |$beta:ident| $build:expr, j in $range:expr;)*) => {$(
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(64))]
+            #[test]
+            fn $name($beta in 0.0..20.0f64, j in $range) {
+                check_penalty(&$build, j)?;
+            }
+        }
+    )*};
+}
+
+penalty_suite! {
+    log_penalty_derivatives => |_beta| LogPenalty, j in 1e-3..20.0f64;
+    quadratic_penalty_derivatives => |_beta| QuadraticPenalty, j in -20.0..20.0f64;
+    sheen_penalty_derivatives => |beta| SheenPenalty::new(beta).unwrap(), j in -20.0..20.0f64;
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Conditions a-e of sec. 5 of Sheen et al. 2021 for `U(J; beta)`, `beta` in `[0, 20]`:
+    /// a) `U(1) = 0`, b) `U'(1) = 0`, c) `U''(1) = 1`, d) defined (finite) for every real `J`,
+    /// e) `U''(J) >= 0`; and `U(J; 0) = (J - 1)^2 / 2` (Stable neo-Hookean).
+    #[test]
+    fn sheen_penalty_conditions(beta in 0.0..20.0f64, j in -1e3..1e3f64) {
+        let u = SheenPenalty::new(beta).unwrap();
+        prop_assert_eq!(u.value(1.0).unwrap(), 0.0);
+        prop_assert_eq!(u.first_derivative(1.0).unwrap(), 0.0);
+        prop_assert_eq!(u.second_derivative(1.0).unwrap(), 1.0);
+        prop_assert!(u.is_defined_at(j));
+        let (v, d1, d2) = (u.value(j).unwrap(), u.first_derivative(j).unwrap(), u.second_derivative(j).unwrap());
+        prop_assert!(v.is_finite() && d1.is_finite() && d2.is_finite());
+        prop_assert!(d2 >= 0.0 && v >= 0.0);
+        // Convex with minimum at 1: U' has the sign of J - 1.
+        prop_assert!(d1 * (j - 1.0) >= 0.0);
+        let snh = SheenPenalty::new(0.0).unwrap().value(j).unwrap();
+        prop_assert!((snh - QuadraticPenalty.value(j).unwrap()).abs() <= 1e-15 * snh.max(1.0));
+    }
+}
+
+#[test]
+fn log_penalty_refuses_non_positive_j() {
+    for j in [0.0, -1e-9, -3.0] {
+        assert!(LogPenalty.value(j).is_err() && LogPenalty.second_derivative(j).is_err());
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tet element kernel
+
+fn flatten_positions<const N: usize>(x: &[Vector3<f64>; N]) -> DVector<f64> {
+    DVector::from_iterator(3 * N, x.iter().flat_map(|v| v.iter().copied()))
+}
+
+fn unflatten_positions<const N: usize>(v: &DVector<f64>) -> [Vector3<f64>; N] {
+    std::array::from_fn(|a| Vector3::new(v[3 * a], v[3 * a + 1], v[3 * a + 2]))
+}
+
+fn rest_data(rest: &[Vector3<f64>; 4]) -> (Matrix3<f64>, f64) {
+    let dm = Matrix3::from_columns(&[rest[1] - rest[0], rest[2] - rest[0], rest[3] - rest[0]]);
+    (dm.try_inverse().unwrap(), dm.determinant() / 6.0)
+}
+
+/// Deformed positions `F0 x_rest + noise` (noise up to 10% of the longest edge).
+fn deformed_tet() -> impl Strategy<Value = ([Vector3<f64>; 4], [Vector3<f64>; 4])> {
+    (
+        rest_tet(),
+        with_determinant(0.3, 3.0, false),
+        proptest::array::uniform12(-0.1..0.1f64),
+    )
+        .prop_map(|(rest, f0, noise)| {
+            let l = max_edge(&rest);
+            let x = std::array::from_fn(|a| {
+                f0 * rest[a] + Vector3::new(noise[3 * a], noise[3 * a + 1], noise[3 * a + 2]) * l
+            });
+            (rest, x)
+        })
+}
+
+/// Element gradient and Hessian of `m` against differences of the element energy and gradient.
+/// The floors are the natural scales `mu V / l` and `mu V / l^2` (l the longest rest edge).
+fn check_tet<M: Hyperelastic + ?Sized>(
+    m: &M,
+    rest: &[Vector3<f64>; 4],
+    x: &[Vector3<f64>; 4],
+    mu: f64,
+) -> Result<(), TestCaseError> {
+    let (dm_inv, volume) = rest_data(rest);
+    let f = tet::deformation_gradient(x, &dm_inv);
+    if !m.is_defined_at(f.determinant()) {
+        prop_assert!(tet::energy_gradient_hessian(m, x, &dm_inv, volume).is_err());
+        return Ok(());
+    }
+    let l = max_edge(rest);
+    let h = fd::STEP * max_edge(x);
+    let terms = tet::energy_gradient_hessian(m, x, &dm_inv, volume).unwrap();
+    let xv = flatten_positions(x);
+    let energy =
+        |v: &DVector<f64>| tet::energy(m, &unflatten_positions(v), &dm_inv, volume).unwrap();
+    let grad = |v: &DVector<f64>| {
+        let g = tet::gradient(m, &unflatten_positions(v), &dm_inv, volume).unwrap();
+        DVector::from_column_slice(g.as_slice())
+    };
+
+    prop_assert!((terms.energy - energy(&xv)).abs() <= 1e-15 * terms.energy.abs());
+    let g = DVector::from_column_slice(terms.gradient.as_slice());
+    let err = relative_error_vec(&g, &fd::gradient(energy, &xv, h), mu * volume / l);
+    prop_assert!(
+        err < TOLERANCE,
+        "{}: element gradient, relative error {err:e}",
+        m.name()
+    );
+    let hm = DMatrix::from_column_slice(12, 12, terms.hessian.as_slice());
+    let err = relative_error(&hm, &fd::jacobian(grad, &xv, h), mu * volume / (l * l));
+    prop_assert!(
+        err < TOLERANCE,
+        "{}: element Hessian, relative error {err:e}",
+        m.name()
+    );
+    prop_assert_eq!(terms.hessian, terms.hessian.transpose());
+    // Rigid translations are in the kernel of the Hessian and do not change the gradient sum.
+    let ones = nalgebra::SVector::<f64, 12>::from_fn(|i, _| if i % 3 == 0 { 1.0 } else { 0.0 });
+    let scale = terms.hessian.amax().max(mu * volume / (l * l));
+    prop_assert!((terms.hessian * ones).amax() < 1e-12 * scale);
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn tet_kernel_matches_differences(p in params(), (rest, x) in deformed_tet()) {
+        let lame = Lame::new(p.mu, p.lambda).unwrap();
+        let materials: [&dyn Hyperelastic; 3] = [
+            &standard_neo_hookean(lame).unwrap(),
+            &StableNeoHookean::new(lame).unwrap(),
+            &constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).unwrap(),
+        ];
+        for m in materials {
+            check_tet(m, &rest, &x, p.mu)?;
+        }
+    }
+
+    /// Inverted deformed tets: the invertible energies still match differences.
+    #[test]
+    fn tet_kernel_inverted(p in params(), (rest, x) in deformed_tet()) {
+        let mut x = x;
+        x.swap(1, 2);
+        let m = constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).unwrap();
+        check_tet(&m, &rest, &x, p.mu)?;
+        check_tet(&standard_neo_hookean(Lame::new(p.mu, p.lambda).unwrap()).unwrap(), &rest, &x, p.mu)?;
+    }
+
+    #[test]
+    fn tet_deformation_gradient_and_jacobian(rest in rest_tet(), f0 in near_identity(0.5)) {
+        let (dm_inv, _) = rest_data(&rest);
+        let x: [Vector3<f64>; 4] = std::array::from_fn(|a| f0 * rest[a] + Vector3::new(0.3, -1.0, 2.0));
+        let f = tet::deformation_gradient(&x, &dm_inv);
+        prop_assert!((f - f0).amax() < 1e-12 * f0.amax());
+        let d = tet::deformation_jacobian(&dm_inv);
+        let fv = kinematics::flatten(&f);
+        let xv = nalgebra::SVector::<f64, 12>::from_column_slice(flatten_positions(&x).as_slice());
+        prop_assert!((d * xv - fv).amax() < 1e-11 * f0.amax() * (1.0 + xv.amax()));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Triangle kernel and epidermis (eq. 16 of Sheen et al. 2021)
+
+fn deformed_triangle() -> impl Strategy<Value = ([Vector3<f64>; 3], [Vector3<f64>; 3])> {
+    (
+        rest_triangle(),
+        near_identity(0.6),
+        proptest::array::uniform9(-0.2..0.2f64),
+    )
+        .prop_map(|(rest, f0, noise)| {
+            let l = max_edge(&rest);
+            let x = std::array::from_fn(|a| {
+                f0 * rest[a] + Vector3::new(noise[3 * a], noise[3 * a + 1], noise[3 * a + 2]) * l
+            });
+            (rest, x)
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn area_ratio_matches_differences((rest, x) in deformed_triangle()) {
+        let t = triangle::RestTriangle::new(&rest).unwrap();
+        let d = triangle::area_ratio_derivatives(&x, &t);
+        // J~ = sqrt(det(F~^T F~)).
+        let ft = triangle::reduced_deformation_gradient(&x, &t);
+        let j = (ft.transpose() * ft).determinant().sqrt();
+        prop_assert!((d.value - j).abs() <= 1e-12 * j.max(1.0));
+        let h = fd::STEP * max_edge(&x);
+        let l = max_edge(&rest);
+        let xv = flatten_positions(&x);
+        let value = |v: &DVector<f64>| triangle::area_ratio(&unflatten_positions(v), &t);
+        let grad = |v: &DVector<f64>| {
+            let g = triangle::area_ratio_derivatives(&unflatten_positions(v), &t).gradient;
+            DVector::from_column_slice(g.as_slice())
+        };
+        let g = DVector::from_column_slice(d.gradient.as_slice());
+        let err = relative_error_vec(&g, &fd::gradient(value, &xv, h), 1.0 / l);
+        prop_assert!(err < TOLERANCE, "dJ~/dx relative error {err:e}");
+        let hm = DMatrix::from_column_slice(9, 9, d.hessian.as_slice());
+        let err = relative_error(&hm, &fd::jacobian(grad, &xv, h), 1.0 / (l * l));
+        prop_assert!(err < TOLERANCE, "d2J~/dx2 relative error {err:e}");
+        prop_assert!(relative_error(&hm, &hm.transpose(), 1.0 / (l * l)) < 1e-12);
+    }
+
+    #[test]
+    fn epidermis_matches_differences(
+        (rest, x) in deformed_triangle(),
+        lambda_e in 0.1..100.0f64,
+        gamma in 0.0..5.0f64,
+    ) {
+        let t = triangle::RestTriangle::new(&rest).unwrap();
+        let skin = Epidermis::new(lambda_e, gamma).unwrap();
+        let terms = skin.energy_gradient_hessian(&x, &t);
+        // eq. 16 written out.
+        let jt = triangle::area_ratio(&x, &t);
+        let eq16 = t.area() * lambda_e / 12.0 * (jt - 1.0).powi(2) * (gamma * (jt - 1.0).powi(2) + 6.0);
+        prop_assert!((terms.energy - eq16).abs() <= 1e-12 * eq16.max(lambda_e * t.area()));
+        let h = fd::STEP * max_edge(&x);
+        let l = max_edge(&rest);
+        let xv = flatten_positions(&x);
+        let energy = |v: &DVector<f64>| skin.energy(&unflatten_positions(v), &t);
+        let grad = |v: &DVector<f64>| {
+            DVector::from_column_slice(skin.gradient(&unflatten_positions(v), &t).as_slice())
+        };
+        let scale = lambda_e * t.area();
+        let g = DVector::from_column_slice(terms.gradient.as_slice());
+        let err = relative_error_vec(&g, &fd::gradient(energy, &xv, h), scale / l);
+        prop_assert!(err < TOLERANCE, "epidermis gradient relative error {err:e}");
+        let hm = DMatrix::from_column_slice(9, 9, terms.hessian.as_slice());
+        let err = relative_error(&hm, &fd::jacobian(grad, &xv, h), scale / (l * l));
+        prop_assert!(err < TOLERANCE, "epidermis Hessian relative error {err:e}");
+        prop_assert!(relative_error(&hm, &hm.transpose(), scale / (l * l)) < 1e-12);
+    }
+}
+
+#[test]
+fn epidermis_is_at_rest_when_area_is_kept() {
+    let rest = [
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(2.0, 0.0, 0.0),
+        Vector3::new(0.0, 1.0, 0.0),
+    ];
+    let t = triangle::RestTriangle::new(&rest).unwrap();
+    let skin = Epidermis::from_young_poisson(10.0, 0.45, 1.0).unwrap();
+    // A rotated and sheared (area-preserving) copy: zero energy and zero force.
+    let shear = Matrix3::new(0.0, 0.0, 1.0, 1.0, 0.7, 0.0, 0.0, 1.0, 0.0);
+    let x = rest.map(|v| shear * v);
+    let terms = skin.energy_gradient_hessian(&x, &t);
+    assert!(terms.energy.abs() < 1e-14 && terms.gradient.amax() < 1e-13);
+}
+
+// ---------------------------------------------------------------------------------------------
+// PSD projection
+
+fn min_eigenvalue(m: &Matrix12) -> f64 {
+    SymmetricEigen::new(*m).eigenvalues.min()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn projection_gives_psd(entries in proptest::collection::vec(-10.0..10.0f64, 144)) {
+        let a = Matrix12::from_column_slice(&entries);
+        let m = (a + a.transpose()) * 0.5;
+        let p = project_to_psd(&m);
+        prop_assert!(min_eigenvalue(&p) >= -1e-12 * m.amax());
+        prop_assert_eq!(p, p.transpose());
+        // Idempotent up to rounding, and unchanged where m already was PSD.
+        prop_assert!((project_to_psd(&p) - p).amax() <= 1e-12 * m.amax());
+    }
+
+    #[test]
+    fn projection_keeps_psd_input(entries in proptest::collection::vec(-10.0..10.0f64, 144)) {
+        let a = Matrix12::from_column_slice(&entries);
+        let m = a * a.transpose();
+        prop_assert_eq!(project_to_psd(&m), m);
+    }
+
+    /// An element Hessian at a compressed, inverted configuration becomes PSD; a rest-state
+    /// Hessian (PSD, singular: rigid modes) is left as is.
+    #[test]
+    fn projection_of_element_hessians(p in params(), (rest, x) in deformed_tet()) {
+        let (dm_inv, volume) = rest_data(&rest);
+        let m = constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).unwrap();
+        let mut inverted = x;
+        inverted.swap(1, 2);
+        let h = tet::hessian(&m, &inverted, &dm_inv, volume).unwrap();
+        prop_assert!(min_eigenvalue(&project_to_psd(&h)) >= -1e-12 * h.amax());
+        let at_rest = tet::hessian(&m, &rest, &dm_inv, volume).unwrap();
+        prop_assert_eq!(project_to_psd(&at_rest), at_rest);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parameters
+
+#[test]
+fn bad_parameters_are_named_errors() {
+    let cases: [(Result<Lame, isochor_energies::ParameterError>, &str); 9] = [
+        (Lame::from_young_poisson(f64::NAN, 0.3), "E"),
+        (Lame::from_young_poisson(0.0, 0.3), "E"),
+        (Lame::from_young_poisson(-2.0, 0.3), "E"),
+        (Lame::from_young_poisson(1.0, f64::NAN), "nu"),
+        (Lame::from_young_poisson(1.0, -1.0), "nu"),
+        (Lame::from_young_poisson(1.0, 0.6), "nu"),
+        (Lame::from_young_poisson(1.0, 0.5), "nu"),
+        (Lame::new(f64::NAN, 1.0), "mu"),
+        (Lame::new(1.0, f64::INFINITY), "lambda"),
+    ];
+    for (result, name) in cases {
+        assert_eq!(result.unwrap_err().name, name);
+    }
+    let lame = Lame::from_young_poisson(1e5, 0.45).unwrap();
+    assert!((lame.mu - 1e5 / 2.9).abs() < 1e-9 * lame.mu);
+    assert!((lame.lambda - 1e5 * 0.45 / (1.45 * 0.1)).abs() < 1e-9 * lame.lambda);
+    assert_eq!(Mooney::new(0.0).unwrap_err().name, "mu");
+    assert_eq!(BonetWood::new(-1.0).unwrap_err().name, "mu");
+    assert_eq!(FbarNeoHookean::new(1.0, 0.0).unwrap_err().name, "epsilon");
+    assert_eq!(SheenPenalty::new(f64::NAN).unwrap_err().name, "beta");
+    assert_eq!(
+        constrained_neo_hookean(1.0, f64::NAN, 1.0, 0.1)
+            .unwrap_err()
+            .name,
+        "lambda"
+    );
+    assert_eq!(
+        Epidermis::from_young_poisson(1.0, 0.5, 1.0)
+            .unwrap_err()
+            .name,
+        "nu"
+    );
+}
