@@ -62,7 +62,8 @@ impl ConstraintSet for ElementConstraints {
 
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
         self.tets.check_positions(x)?;
-        self.tets.fill_gradients(x, out, self.tets.len(), 1, 1.0, |e| e)
+        self.tets
+            .fill_gradients(x, out, self.tets.len(), 1, 1.0, |e| e)
     }
 
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {
@@ -95,11 +96,7 @@ impl ConstraintSet for ElementConstraints {
     }
 
     /// The element multiplier itself (linear measure) or divided by `J_e` (logarithmic).
-    fn tet_pressures(
-        &self,
-        x: &[Vec3],
-        multipliers: &[f64],
-    ) -> Vec<f64> {
+    fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64> {
         if self.tets.check_positions(x).is_err() {
             return Vec::new();
         }
@@ -169,7 +166,11 @@ mod tests {
         let rest = mesh.positions();
         assert!(matches!(
             set.values(&rest[..4], &mut phi),
-            Err(ConstraintError::DimensionMismatch { expected: 5, actual: 4, .. })
+            Err(ConstraintError::DimensionMismatch {
+                expected: 5,
+                actual: 4,
+                ..
+            })
         ));
         assert!(set.jacobian_values(rest, &mut g[..12]).is_err());
         assert!(set.tet_pressures(rest, &[1.0]).is_empty());

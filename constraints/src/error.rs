@@ -4,7 +4,9 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ConstraintError {
     /// A tet has non-positive volume where the logarithmic measure needs `v_e > 0`.
-    #[error("tet {tet} has volume {volume:e} <= 0, outside the domain of the logarithmic constraint")]
+    #[error(
+        "tet {tet} has volume {volume:e} <= 0, outside the domain of the logarithmic constraint"
+    )]
     NonPositiveVolume { tet: usize, volume: f64 },
     /// An invalid construction parameter.
     #[error("invalid constraint parameter {name} = {value}: {reason}")]

@@ -8,10 +8,7 @@ use sprs::{CsMat, TriMat};
 /// The constraint Jacobian `G` (`m x 3n`, CSR) at positions `x`, duplicates summed.
 ///
 /// Errors: those of [`ConstraintSet::jacobian_values`].
-pub fn jacobian_matrix(
-    set: &dyn ConstraintSet,
-    x: &[Vec3],
-) -> Result<CsMat<f64>, ConstraintError> {
+pub fn jacobian_matrix(set: &dyn ConstraintSet, x: &[Vec3]) -> Result<CsMat<f64>, ConstraintError> {
     let pattern = set.jacobian_pattern();
     let mut values = vec![0.0; pattern.len()];
     set.jacobian_values(x, &mut values)?;

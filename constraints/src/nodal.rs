@@ -62,7 +62,12 @@ impl NodalConstraints {
 
     /// The average `(p_a + p_b + p_c + p_d) / 4` of the multipliers of tet `e`'s vertices.
     fn tet_multiplier(&self, e: usize, multipliers: &[f64]) -> f64 {
-        self.tets.tet(e).iter().map(|&v| multipliers[v]).sum::<f64>() / 4.0
+        self.tets
+            .tet(e)
+            .iter()
+            .map(|&v| multipliers[v])
+            .sum::<f64>()
+            / 4.0
     }
 }
 
@@ -164,11 +169,7 @@ impl ConstraintSet for NodalConstraints {
 
     /// The average of the tet's 4 nodal multipliers, divided by `J_e` for the logarithmic
     /// measure.
-    fn tet_pressures(
-        &self,
-        x: &[Vec3],
-        multipliers: &[f64],
-    ) -> Vec<f64> {
+    fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64> {
         if self.tets.check_positions(x).is_err() {
             return Vec::new();
         }
@@ -229,8 +230,8 @@ mod tests {
     fn incompressible_compliance_is_exactly_zero() {
         let mesh = two_tets();
         for kind in [NodalCompliance::Lumped, NodalCompliance::Consistent] {
-            let set = NodalConstraints::new(&mesh, Measure::Logarithmic, f64::INFINITY, kind)
-                .unwrap();
+            let set =
+                NodalConstraints::new(&mesh, Measure::Logarithmic, f64::INFINITY, kind).unwrap();
             match set.compliance() {
                 Compliance::Diagonal(d) => assert!(d.iter().all(|&c| c == 0.0)),
                 Compliance::Sparse(t) => assert!(t.iter().all(|&(_, _, c)| c == 0.0)),

@@ -10,6 +10,10 @@ use rayon::prelude::*;
 /// Entries of one 12x12 element block in a geometric stiffness pattern.
 pub(crate) const BLOCK: usize = 144;
 
+/// Smallest number of tets a rayon task handles (per-tet work is well under a microsecond,
+/// so finer splitting costs more than it gains).
+const TETS_PER_TASK: usize = 256;
+
 /// The tets of a mesh with their rest volumes `V_e` and the measure `m_e = V_e Phi(J_e)`
 /// every constraint row is assembled from.
 #[derive(Debug, Clone)]
@@ -79,12 +83,15 @@ impl MeasuredTets {
     /// Writes `m_e(x)` of every tet into `out`, in parallel. `x` must have been checked.
     pub(crate) fn fill_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
         check_len("element values", self.len(), out.len())?;
-        out.par_iter_mut().enumerate().try_for_each(|(e, m)| {
-            *m = self
-                .measure
-                .value(e, &self.positions(e, x), self.rest_volumes[e])?;
-            Ok(())
-        })
+        out.par_iter_mut()
+            .with_min_len(TETS_PER_TASK)
+            .enumerate()
+            .try_for_each(|(e, m)| {
+                *m = self
+                    .measure
+                    .value(e, &self.positions(e, x), self.rest_volumes[e])?;
+                Ok(())
+            })
     }
 
     fn gradient(&self, e: usize, x: &[Vec3]) -> Result<Vector12, ConstraintError> {
@@ -111,6 +118,7 @@ impl MeasuredTets {
     ) -> Result<(), ConstraintError> {
         check_len("jacobian buffer", blocks * copies * 12, out.len())?;
         out.par_chunks_mut(copies * 12)
+            .with_min_len(TETS_PER_TASK)
             .enumerate()
             .try_for_each(|(b, chunk)| {
                 let g = self.gradient(tet_of_block(b), x)? * scale;
@@ -122,10 +130,7 @@ impl MeasuredTets {
     }
 
     /// `(dof_i, dof_j)` of the 12x12 block of every tet in `tets`, row-major per block.
-    pub(crate) fn hessian_pattern(
-        &self,
-        tets: impl Iterator<Item = usize>,
-    ) -> Vec<(usize, usize)> {
+    pub(crate) fn hessian_pattern(&self, tets: impl Iterator<Item = usize>) -> Vec<(usize, usize)> {
         tets.flat_map(|e| {
             let dofs = self.dofs(e);
             dofs.into_iter()
@@ -147,6 +152,7 @@ impl MeasuredTets {
     ) -> Result<(), ConstraintError> {
         check_len("geometric stiffness buffer", blocks * BLOCK, out.len())?;
         out.par_chunks_mut(BLOCK)
+            .with_min_len(TETS_PER_TASK / 4)
             .enumerate()
             .try_for_each(|(b, chunk)| {
                 let e = tet_of_block(b);

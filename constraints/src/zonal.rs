@@ -95,11 +95,7 @@ impl ZonalConstraints {
     /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
     pub fn with_bulk_modulus(mut self, kappa: f64) -> Result<Self, ConstraintError> {
         let inverse = inverse_bulk_modulus(kappa)?;
-        self.compliance = self
-            .rest_zone_volumes
-            .iter()
-            .map(|v| v * inverse)
-            .collect();
+        self.compliance = self.rest_zone_volumes.iter().map(|v| v * inverse).collect();
         Ok(self)
     }
 
@@ -216,11 +212,7 @@ impl ConstraintSet for ZonalConstraints {
     /// of the zones containing the tet (zero outside every zone). Their per-tet pressure adds
     /// the fine-scale volumetric stress `lambda U'(J)` of the compression penalty; the
     /// penalty belongs to the material model, so the solver adds that term, not this set.
-    fn tet_pressures(
-        &self,
-        x: &[Vec3],
-        multipliers: &[f64],
-    ) -> Vec<f64> {
+    fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64> {
         if self.tets.check_positions(x).is_err() {
             return Vec::new();
         }

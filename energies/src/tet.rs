@@ -102,38 +102,63 @@ pub fn energy_gradient_hessian<M: Hyperelastic + ?Sized>(
 
 /// `V dF/dx^T vec(P)`: the force-like gradient of vertex `a` is `V P grad N_a`.
 pub fn pull_back_stress(p: &Matrix3<f64>, grads: &[Vector3<f64>; 4], volume: f64) -> Vector12 {
+    let pv = p * volume;
     let mut out = Vector12::zeros();
     for (a, g) in grads.iter().enumerate() {
-        out.fixed_rows_mut::<3>(3 * a).copy_from(&(p * g * volume));
+        out.fixed_rows_mut::<3>(3 * a).copy_from(&(pv * g));
     }
     out
 }
 
 /// `V dF/dx^T A dF/dx` for a 9x9 (symmetric) `A` in column-major flattening, using the three
-/// nonzeros per column of `dF/dx`. The result is exactly symmetric (lower triangle mirrored).
+/// nonzeros per column of `dF/dx` and translation invariance (`grad N_0 = -sum grad N_a`):
+/// the 9x9 block of vertices 1..3 is computed, and the rows and columns of vertex 0 are minus
+/// the sums of the others. The result is exactly symmetric (lower triangles mirrored).
+// Index loops: every entry is written at (r, c) and (c, r).
+#[allow(clippy::needless_range_loop)]
 pub fn pull_back_tangent(a: &Matrix9, grads: &[Vector3<f64>; 4], volume: f64) -> Matrix12 {
-    // t = A dF/dx (9x12): column (b, k) is sum_l (grad N_b)_l A[:, 3 l + k].
-    let mut t = SMatrix::<f64, 9, 12>::zeros();
-    for (b, g) in grads.iter().enumerate() {
+    let a = &a.data.0; // columns of A
+    let g = [grads[1], grads[2], grads[3]].map(|v| [v.x, v.y, v.z]);
+    // t[3b + k] = column (b + 1, k) of A dF/dx: sum_l (grad N_b)_l A[:, 3 l + k].
+    let mut t = [[0.0f64; 9]; 9];
+    for b in 0..3 {
         for k in 0..3 {
-            let mut col = t.column_mut(3 * b + k);
+            let col = &mut t[3 * b + k];
             for l in 0..3 {
-                col.axpy(g[l], &a.column(3 * l + k), 1.0);
+                let s = g[b][l];
+                for (c, a_rl) in col.iter_mut().zip(&a[3 * l + k]) {
+                    *c += s * a_rl;
+                }
             }
         }
     }
-    // h = dF/dx^T t: h[(a, i), c] = V sum_j (grad N_a)_j t[3 j + i, c], lower triangle only.
-    let mut h = Matrix12::zeros();
-    for c in 0..12 {
-        for r in c..12 {
+    // Columns of the result; h[c][r] = entry (r, c).
+    let mut h = [[0.0f64; 12]; 12];
+    // Vertices 1..3: h[(3 + 3a + i), (3 + c)] = V sum_j (grad N_a)_j t[c][3 j + i], lower part.
+    for c in 0..9 {
+        for r in c..9 {
             let (va, i) = (r / 3, r % 3);
-            let g = &grads[va];
-            let v = volume * (g[0] * t[(i, c)] + g[1] * t[(3 + i, c)] + g[2] * t[(6 + i, c)]);
-            h[(r, c)] = v;
-            h[(c, r)] = v;
+            let v = volume * (g[va][0] * t[c][i] + g[va][1] * t[c][3 + i] + g[va][2] * t[c][6 + i]);
+            h[3 + c][3 + r] = v;
+            h[3 + r][3 + c] = v;
         }
     }
-    h
+    // Vertex 0 against the others: minus the sum over vertices 1..3.
+    for c in 3..12 {
+        for i in 0..3 {
+            let v = -(h[c][3 + i] + h[c][6 + i] + h[c][9 + i]);
+            h[c][i] = v;
+            h[i][c] = v;
+        }
+    }
+    for k in 0..3 {
+        for i in k..3 {
+            let v = -(h[3 + k][i] + h[6 + k][i] + h[9 + k][i]);
+            h[k][i] = v;
+            h[i][k] = v;
+        }
+    }
+    Matrix12::from_data(nalgebra::ArrayStorage(h))
 }
 
 #[cfg(test)]

@@ -144,7 +144,12 @@ pub(crate) struct RingScratch {
 
 impl RingScratch {
     pub(crate) fn new(adjacency: &Adjacency) -> Self {
-        let tets = adjacency.vertex_tets.items.iter().max().map_or(0, |&e| e + 1);
+        let tets = adjacency
+            .vertex_tets
+            .items
+            .iter()
+            .max()
+            .map_or(0, |&e| e + 1);
         RingScratch {
             stamp: 0,
             vertex_seen: vec![0; adjacency.num_vertices()],
@@ -179,7 +184,9 @@ mod tests {
             assert!(tets.iter().all(|&e| mesh.tets()[e].contains(&v)));
             assert!(!adj.vertex_neighbors(v).contains(&v));
         }
-        let total: usize = (0..mesh.num_vertices()).map(|v| adj.vertex_tets(v).len()).sum();
+        let total: usize = (0..mesh.num_vertices())
+            .map(|v| adj.vertex_tets(v).len())
+            .sum();
         assert_eq!(total, 4 * mesh.num_tets());
     }
 
@@ -188,7 +195,9 @@ mod tests {
         let mesh = box_grid(Vec3::zeros(), Vec3::repeat(4.0), [4, 4, 4]).unwrap();
         let adj = Adjacency::new(&mesh);
         let center = 2 + 5 * (2 + 5 * 2);
-        let sizes: Vec<usize> = (1..=4).map(|k| adj.k_ring(center, k).unwrap().len()).collect();
+        let sizes: Vec<usize> = (1..=4)
+            .map(|k| adj.k_ring(center, k).unwrap().len())
+            .collect();
         // 1-ring: 24 tets. 2-ring: tets touching the 15 vertices of the 1-ring, i.e. every tet
         // of the 4 x 4 x 4 hexes around the centre except those whose vertices all lie outside.
         assert_eq!(sizes[0], 24);

@@ -210,7 +210,9 @@ mod tests {
             let p = Vec3::new((t * 0.37).sin(), (t * 0.73).cos(), (t * 0.11).sin() * 0.5) * 1.3;
             let brute = tris
                 .iter()
-                .map(|&[a, b, c]| (closest_point_on_triangle(&p, &x[a], &x[b], &x[c]) - p).norm_squared())
+                .map(|&[a, b, c]| {
+                    (closest_point_on_triangle(&p, &x[a], &x[b], &x[c]) - p).norm_squared()
+                })
                 .fold(f64::INFINITY, f64::min);
             let (_, d) = bvh.closest(&p).unwrap();
             assert_eq!(d, brute, "query {s}");

@@ -33,7 +33,9 @@ pub enum MeshError {
     TetOutOfRange { tet: usize, tets: usize },
     #[error("vertex index {vertex} is out of range (the mesh has {vertices} vertices)")]
     VertexOutOfRange { vertex: usize, vertices: usize },
-    #[error("face {face:?} is shared by {count} tets (a conforming mesh shares a face by at most 2)")]
+    #[error(
+        "face {face:?} is shared by {count} tets (a conforming mesh shares a face by at most 2)"
+    )]
     NonManifoldFace { face: [usize; 3], count: usize },
     #[error("surface edge {edge:?} belongs to one triangle only: the surface is open there")]
     OpenBoundary { edge: [usize; 2] },
@@ -41,7 +43,9 @@ pub enum MeshError {
     NonManifoldEdge { edge: [usize; 2], count: usize },
     #[error("surface edge {edge:?} is traversed in the same direction by both of its triangles: their orientations disagree")]
     InconsistentOrientation { edge: [usize; 2] },
-    #[error("selection \"{name}\" is empty: its region contains no vertex or boundary face of the mesh")]
+    #[error(
+        "selection \"{name}\" is empty: its region contains no vertex or boundary face of the mesh"
+    )]
     EmptySelection { name: String },
     #[error("zone {zone} is empty")]
     EmptyZone { zone: usize },

@@ -9,6 +9,7 @@ mod adjacency;
 mod closest;
 mod error;
 pub mod generate;
+pub mod io;
 mod selection;
 mod surface;
 mod tet_mesh;

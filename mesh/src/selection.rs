@@ -54,7 +54,11 @@ impl Region {
         if !(point.iter().all(|c| c.is_finite()) && norm.is_finite() && norm > 0.0) {
             return Err(MeshError::parameter(
                 "half_space",
-                format!("point {:?}, normal {:?}", point.as_slice(), normal.as_slice()),
+                format!(
+                    "point {:?}, normal {:?}",
+                    point.as_slice(),
+                    normal.as_slice()
+                ),
                 "point must be finite and normal finite and non-zero",
             ));
         }
@@ -242,7 +246,9 @@ mod tests {
         let v = VertexSelection::from_region("left", &mesh, &left);
         assert_eq!(v.len(), 25);
         assert!(v.vertices.iter().all(|&i| mesh.positions()[i].x == 0.0));
-        let f = FaceSelection::from_region("left", &mesh, &s, &left).non_empty().unwrap();
+        let f = FaceSelection::from_region("left", &mesh, &s, &left)
+            .non_empty()
+            .unwrap();
         assert_eq!(f.len(), 32);
         assert!((f.area(mesh.positions()) - 1.0).abs() < 1e-14);
         assert_eq!(f.vertices(), v.vertices);
@@ -260,7 +266,10 @@ mod tests {
         let top = Region::half_space(Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.0, 2.0)).unwrap();
         assert_eq!(VertexSelection::from_region("top", &mesh, &top).len(), 25);
         let above = Region::half_space(Vec3::new(0.0, 0.0, 0.5), Vec3::z()).unwrap();
-        assert_eq!(VertexSelection::from_region("upper", &mesh, &above).len(), 75);
+        assert_eq!(
+            VertexSelection::from_region("upper", &mesh, &above).len(),
+            75
+        );
         let on_axis = Region::predicate(|x| x.x == 0.5 && x.y == 0.5);
         let axis = VertexSelection::from_region("axis", &mesh, &on_axis);
         assert_eq!(axis.len(), 5);

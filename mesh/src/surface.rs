@@ -189,12 +189,7 @@ mod tests {
     use crate::generate::box_grid;
 
     fn unit_tet() -> TetMesh {
-        let x = vec![
-            Vec3::zeros(),
-            Vec3::x(),
-            Vec3::y(),
-            Vec3::z(),
-        ];
+        let x = vec![Vec3::zeros(), Vec3::x(), Vec3::y(), Vec3::z()];
         TetMesh::new(x, vec![[0, 1, 2, 3]]).unwrap()
     }
 
@@ -245,7 +240,8 @@ mod tests {
         }
         assert!(sum.norm() < 1e-13);
         assert!((s.enclosed_volume(x) - mesh.rest_volume()).abs() < 1e-13);
-        let surface_vertices = 4 * 5 * 3 - 2 * 3 * 1;
+        // All 4 x 3 x 5 grid vertices but the (4-2) x (3-2) x (5-2) interior ones.
+        let surface_vertices = 4 * 3 * 5 - 2 * 3;
         assert_eq!(s.vertices().len(), surface_vertices);
         for (f, &e) in s.owner_tets().iter().enumerate() {
             let t = mesh.tets()[e];
@@ -259,7 +255,9 @@ mod tests {
         let x = mesh.positions();
         // A slab is a closed manifold; a scattered set touches itself along edges but the
         // divergence theorem still holds.
-        let slab: Vec<usize> = (0..mesh.num_tets()).filter(|&e| mesh.centroid(e).z < 1.0 / 3.0).collect();
+        let slab: Vec<usize> = (0..mesh.num_tets())
+            .filter(|&e| mesh.centroid(e).z < 1.0 / 3.0)
+            .collect();
         let s = BoundarySurface::of_tets(&mesh, &slab).unwrap();
         s.check_closed().unwrap();
         assert_eq!(slab.len(), mesh.num_tets() / 3);
@@ -267,7 +265,10 @@ mod tests {
         assert!((s.rest_area() - (2.0 + 4.0 / 3.0)).abs() < 1e-14);
         let set: Vec<usize> = (0..mesh.num_tets()).filter(|e| e % 3 != 0).collect();
         let s = BoundarySurface::of_tets(&mesh, &set).unwrap();
-        assert!(matches!(s.check_closed(), Err(MeshError::NonManifoldEdge { .. })));
+        assert!(matches!(
+            s.check_closed(),
+            Err(MeshError::NonManifoldEdge { .. })
+        ));
         let volume: f64 = set.iter().map(|&e| mesh.rest_volumes()[e]).sum();
         assert!((s.enclosed_volume(x) - volume).abs() < 1e-14);
         assert!(s.owner_tets().iter().all(|e| e % 3 != 0));
@@ -288,7 +289,13 @@ mod tests {
         ];
         let mesh = TetMesh::new(x, vec![[0, 1, 2, 3], [0, 1, 2, 4], [0, 1, 2, 5]]).unwrap();
         let e = mesh.boundary().unwrap_err();
-        assert!(matches!(e, MeshError::NonManifoldFace { face: [0, 1, 2], count: 3 }));
+        assert!(matches!(
+            e,
+            MeshError::NonManifoldFace {
+                face: [0, 1, 2],
+                count: 3
+            }
+        ));
         // Two tets sharing only the edge 0-1.
         let x = vec![
             Vec3::zeros(),
@@ -300,11 +307,20 @@ mod tests {
         ];
         let mesh = TetMesh::new(x, vec![[0, 1, 2, 3], [0, 1, 4, 5]]).unwrap();
         let e = mesh.boundary().unwrap().check_closed().unwrap_err();
-        assert!(matches!(e, MeshError::NonManifoldEdge { edge: [0, 1], count: 4 }));
+        assert!(matches!(
+            e,
+            MeshError::NonManifoldEdge {
+                edge: [0, 1],
+                count: 4
+            }
+        ));
         assert!(e.to_string().contains("[0, 1]"));
         let e = check_closed_manifold(&[[0, 1, 2]]).unwrap_err();
         assert!(matches!(e, MeshError::OpenBoundary { edge: [0, 1] }));
         let e = check_closed_manifold(&[[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]).unwrap_err();
-        assert!(matches!(e, MeshError::InconsistentOrientation { edge: [0, 1] }));
+        assert!(matches!(
+            e,
+            MeshError::InconsistentOrientation { edge: [0, 1] }
+        ));
     }
 }

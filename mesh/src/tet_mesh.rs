@@ -240,9 +240,23 @@ mod tests {
     #[test]
     fn bad_tets_are_named() {
         let e = TetMesh::new(unit_tet(), vec![[0, 1, 2, 3], [0, 1, 2, 7]]).unwrap_err();
-        assert!(matches!(e, MeshError::IndexOutOfRange { tet: 1, index: 7, .. }));
+        assert!(matches!(
+            e,
+            MeshError::IndexOutOfRange {
+                tet: 1,
+                index: 7,
+                ..
+            }
+        ));
         let e = TetMesh::new(unit_tet(), vec![[0, 1, 1, 3]]).unwrap_err();
-        assert!(matches!(e, MeshError::RepeatedVertex { tet: 0, vertex: 1, .. }));
+        assert!(matches!(
+            e,
+            MeshError::RepeatedVertex {
+                tet: 0,
+                vertex: 1,
+                ..
+            }
+        ));
         let mut flat = unit_tet();
         flat[3] = Vec3::new(0.3, 0.3, 0.0);
         let e = TetMesh::new(flat, vec![[0, 1, 2, 3]]).unwrap_err();

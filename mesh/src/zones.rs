@@ -205,7 +205,10 @@ mod tests {
         let z = Zones::global(&mesh);
         assert_eq!(z.len(), 1);
         assert_eq!(z.zone(0).len(), mesh.num_tets());
-        assert_eq!(z.tet_zone_ids(mesh.num_tets()).unwrap(), vec![0; mesh.num_tets()]);
+        assert_eq!(
+            z.tet_zone_ids(mesh.num_tets()).unwrap(),
+            vec![0; mesh.num_tets()]
+        );
     }
 
     #[test]
@@ -222,13 +225,19 @@ mod tests {
                     hits[e] += 1;
                 }
                 // Every zone is exactly the k-ring of some vertex.
-                let is_ring = (0..mesh.num_vertices())
-                    .any(|v| adjacency.k_ring(v, k).unwrap() == zone);
+                let is_ring =
+                    (0..mesh.num_vertices()).any(|v| adjacency.k_ring(v, k).unwrap() == zone);
                 assert!(is_ring, "k = {k}: a zone is not a k-ring");
             }
             assert!(hits.iter().all(|&h| h >= 1), "k = {k}: a tet is uncovered");
-            assert!(hits.iter().any(|&h| h >= 2), "k = {k}: rings should overlap");
-            assert!(zones.len() < previous, "k = {k}: larger rings need fewer zones");
+            assert!(
+                hits.iter().any(|&h| h >= 2),
+                "k = {k}: rings should overlap"
+            );
+            assert!(
+                zones.len() < previous,
+                "k = {k}: larger rings need fewer zones"
+            );
             // The cover is far smaller than one ring per vertex.
             assert!(zones.len() * 3 < mesh.num_vertices());
             previous = zones.len();
@@ -250,8 +259,12 @@ mod tests {
             .collect();
         let zones = Zones::painted(&mesh, &labels).unwrap();
         assert_eq!(zones.len(), 2);
-        let left: Vec<usize> = (0..mesh.num_tets()).filter(|&e| mesh.centroid(e).x < 0.5).collect();
-        let right: Vec<usize> = (0..mesh.num_tets()).filter(|&e| mesh.centroid(e).x > 0.5).collect();
+        let left: Vec<usize> = (0..mesh.num_tets())
+            .filter(|&e| mesh.centroid(e).x < 0.5)
+            .collect();
+        let right: Vec<usize> = (0..mesh.num_tets())
+            .filter(|&e| mesh.centroid(e).x > 0.5)
+            .collect();
         assert_eq!(zones.zone(0), left.as_slice());
         assert_eq!(zones.zone(1), right.as_slice());
         let ids = zones.tet_zone_ids(mesh.num_tets()).unwrap();
@@ -272,7 +285,10 @@ mod tests {
         assert!(!zones.zone(1).is_empty() && zones.zone(1).len() < mesh.num_tets());
         assert!(zones.zone(1).iter().all(|&e| mesh.centroid(e).z > 0.5));
         // Label 2 is never used by any vertex: zone 1 is empty.
-        let skipped: Vec<Vec<usize>> = labels.iter().map(|l| l.iter().map(|z| 2 * z).collect()).collect();
+        let skipped: Vec<Vec<usize>> = labels
+            .iter()
+            .map(|l| l.iter().map(|z| 2 * z).collect())
+            .collect();
         let e = Zones::painted(&mesh, &skipped).unwrap_err();
         assert!(matches!(e, MeshError::EmptyZone { zone: 1 }));
         assert!(Zones::painted(&mesh, &labels[1..]).is_err());

@@ -23,18 +23,28 @@ fn check_mesh(mesh: &TetMesh) -> f64 {
 /// Relative volume errors for `res = 1, 2, 4, 8`; asserts they decrease at second order
 /// (each halving of the cell size divides the error by at least 3).
 fn assert_second_order(name: &str, exact: f64, volume: impl Fn(usize) -> f64) -> Vec<f64> {
-    let errors: Vec<f64> = [1, 2, 4, 8].map(|res| (volume(res) - exact).abs() / exact).to_vec();
+    let errors: Vec<f64> = [1, 2, 4, 8]
+        .map(|res| (volume(res) - exact).abs() / exact)
+        .to_vec();
     let shown: Vec<String> = errors.iter().map(|e| format!("{e:.3e}")).collect();
     eprintln!("{name}: relative volume errors for res 1, 2, 4, 8: {shown:?}");
     for w in errors.windows(2) {
-        assert!(w[1] * 3.0 < w[0], "{name}: errors {errors:?} do not converge at second order");
+        assert!(
+            w[1] * 3.0 < w[0],
+            "{name}: errors {errors:?} do not converge at second order"
+        );
     }
     errors
 }
 
 #[test]
 fn box_volume_and_area_are_exact() {
-    let mesh = box_grid(Vec3::new(-0.5, 0.0, 1.0), Vec3::new(0.5, 0.3, 1.7), [5, 3, 4]).unwrap();
+    let mesh = box_grid(
+        Vec3::new(-0.5, 0.0, 1.0),
+        Vec3::new(0.5, 0.3, 1.7),
+        [5, 3, 4],
+    )
+    .unwrap();
     let volume = check_mesh(&mesh);
     let exact = 1.0 * 0.3 * 0.7;
     assert!((volume - exact).abs() < 1e-15);
@@ -56,7 +66,10 @@ fn cylinder_converges_and_lies_on_its_surface() {
             let rho = p.xy().norm();
             let on_side = (rho - r).abs() < 4.0 * f64::EPSILON * r;
             let on_cap = p.z == 0.0 || p.z == h;
-            assert!(on_side || on_cap, "res {res}: surface vertex {v} at {p:?} is off the cylinder");
+            assert!(
+                on_side || on_cap,
+                "res {res}: surface vertex {v} at {p:?} is off the cylinder"
+            );
             assert!(rho <= r * (1.0 + 4.0 * f64::EPSILON));
         }
     }
@@ -121,7 +134,10 @@ fn ball_converges_and_lies_on_its_sphere() {
         let surface = mesh.boundary().unwrap();
         for &v in surface.vertices() {
             let d = mesh.positions()[v].norm();
-            assert!((d - r).abs() < 4.0 * f64::EPSILON * r, "res {res}: vertex {v} at radius {d}");
+            assert!(
+                (d - r).abs() < 4.0 * f64::EPSILON * r,
+                "res {res}: vertex {v} at radius {d}"
+            );
         }
     }
     let errors = assert_second_order("ball", 4.0 / 3.0 * PI * r * r * r, |res| {

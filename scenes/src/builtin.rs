@@ -4,15 +4,30 @@
 /// `(name, TOML text)` of every built-in scene, in the order `isochor list` prints them.
 pub const BUILTIN: &[(&str, &str)] = &[
     ("cantilever", include_str!("../builtin/cantilever.toml")),
-    ("compressed-block", include_str!("../builtin/compressed-block.toml")),
-    ("inflated-tube", include_str!("../builtin/inflated-tube.toml")),
-    ("stretched-cylinder", include_str!("../builtin/stretched-cylinder.toml")),
+    (
+        "compressed-block",
+        include_str!("../builtin/compressed-block.toml"),
+    ),
+    (
+        "inflated-tube",
+        include_str!("../builtin/inflated-tube.toml"),
+    ),
+    (
+        "stretched-cylinder",
+        include_str!("../builtin/stretched-cylinder.toml"),
+    ),
     ("twisted-box", include_str!("../builtin/twisted-box.toml")),
     ("two-tets", include_str!("../builtin/two-tets.toml")),
-    ("pressure-cube", include_str!("../builtin/pressure-cube.toml")),
+    (
+        "pressure-cube",
+        include_str!("../builtin/pressure-cube.toml"),
+    ),
     ("dynamic-cube", include_str!("../builtin/dynamic-cube.toml")),
     ("bulge-puck", include_str!("../builtin/bulge-puck.toml")),
-    ("epidermis-puck", include_str!("../builtin/epidermis-puck.toml")),
+    (
+        "epidermis-puck",
+        include_str!("../builtin/epidermis-puck.toml"),
+    ),
     ("zoning-beam", include_str!("../builtin/zoning-beam.toml")),
 ];
 

@@ -42,6 +42,8 @@ pub enum SceneError {
     },
     #[error("output: {0}")]
     Output(String),
+    #[error("stdout: {0}")]
+    Stdout(#[source] std::io::Error),
     #[error("{0}")]
     Usage(String),
 }

@@ -10,16 +10,22 @@
 //! [`RunResult`].
 
 pub mod builtin;
+pub mod cli;
+pub mod compare;
 mod error;
 pub mod load;
-mod meshio;
+pub mod output;
 pub mod overrides;
 pub mod probes;
 pub mod problem;
+pub mod result;
+pub mod run;
 pub mod scene;
 pub mod selection;
 
 pub use error::SceneError;
 pub use load::{load_scene, SceneSource};
 pub use overrides::Override;
+pub use result::{RunResult, StepRecord};
+pub use run::{run_named, run_scene, RunOptions};
 pub use scene::Scene;

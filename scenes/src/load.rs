@@ -57,12 +57,18 @@ impl SceneSource {
         let base = Scene::from_value(tree.clone(), &self.origin)?;
         let mut all = Vec::new();
         if let Some(name) = variant {
-            let sets = base.variants.get(name).ok_or_else(|| SceneError::UnknownVariant {
-                scene: base.name.clone(),
-                name: name.to_string(),
-                valid: base.variants.keys().cloned().collect::<Vec<_>>().join(", "),
-            })?;
-            all.extend(sets.iter().map(|(k, v)| Override::new(k.clone(), v.clone())));
+            let sets = base
+                .variants
+                .get(name)
+                .ok_or_else(|| SceneError::UnknownVariant {
+                    scene: base.name.clone(),
+                    name: name.to_string(),
+                    valid: base.variants.keys().cloned().collect::<Vec<_>>().join(", "),
+                })?;
+            all.extend(
+                sets.iter()
+                    .map(|(k, v)| Override::new(k.clone(), v.clone())),
+            );
         }
         all.extend_from_slice(overrides);
         if all.is_empty() {
@@ -85,6 +91,10 @@ impl SceneSource {
 }
 
 /// Loads a scene by name or path with a variant and overrides.
-pub fn load_scene(spec: &str, variant: Option<&str>, overrides: &[Override]) -> Result<Scene, SceneError> {
+pub fn load_scene(
+    spec: &str,
+    variant: Option<&str>,
+    overrides: &[Override],
+) -> Result<Scene, SceneError> {
     SceneSource::resolve(spec)?.load(variant, overrides)
 }

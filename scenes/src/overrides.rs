@@ -63,10 +63,12 @@ pub struct Override {
 impl Override {
     /// Parses `KEY=VALUE`.
     pub fn parse(assignment: &str) -> Result<Override, SceneError> {
-        let (key, raw) = assignment.split_once('=').ok_or_else(|| SceneError::Override {
-            key: assignment.to_string(),
-            message: "expected KEY=VALUE (e.g. nu=0.4999, res=4, method=mixed-p1)".into(),
-        })?;
+        let (key, raw) = assignment
+            .split_once('=')
+            .ok_or_else(|| SceneError::Override {
+                key: assignment.to_string(),
+                message: "expected KEY=VALUE (e.g. nu=0.4999, res=4, method=mixed-p1)".into(),
+            })?;
         let key = key.trim();
         check_key_syntax(key).map_err(|message| SceneError::Override {
             key: key.to_string(),
@@ -138,7 +140,9 @@ pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
     };
     if o.key == "mesh" {
         let Value::String(path) = &o.value else {
-            return Err(err("expected a mesh file path (.msh, .node, .ele or .vtu)".into()));
+            return Err(err(
+                "expected a mesh file path (.msh, .node, .ele or .vtu)".into()
+            ));
         };
         let mut table = toml::Table::new();
         table.insert("generator".into(), Value::String("file".into()));
@@ -207,7 +211,12 @@ fn resolve(tree: &Value, key: &str) -> Result<String, String> {
     let mesh_keys = tree
         .get("mesh")
         .and_then(Value::as_table)
-        .map(|m| m.keys().filter(|k| *k != "generator").cloned().collect::<Vec<_>>())
+        .map(|m| {
+            m.keys()
+                .filter(|k| *k != "generator")
+                .cloned()
+                .collect::<Vec<_>>()
+        })
         .unwrap_or_default();
     let mut valid: Vec<String> = flat_names().iter().map(|s| s.to_string()).collect();
     valid.extend(mesh_keys);
@@ -238,7 +247,10 @@ fn set_path(tree: &mut Value, path: &str, value: Value) -> Result<(), String> {
             }
             Value::Array(a) => {
                 let index: usize = seg.parse().map_err(|_| {
-                    format!("'{here}' is a list: address its entries by index (0..{})", a.len())
+                    format!(
+                        "'{here}' is a list: address its entries by index (0..{})",
+                        a.len()
+                    )
                 })?;
                 let len = a.len();
                 let slot = a
@@ -344,7 +356,10 @@ mod tests {
         let mut t = tree();
         let e = apply(&mut t, &Override::parse("nuu=0.3").unwrap()).unwrap_err();
         let msg = e.to_string();
-        assert!(msg.contains("nuu") && msg.contains("valid:") && msg.contains("nu,"), "{msg}");
+        assert!(
+            msg.contains("nuu") && msg.contains("valid:") && msg.contains("nu,"),
+            "{msg}"
+        );
         let e = apply(&mut t, &Override::parse("dirichlet.3.axes=z").unwrap()).unwrap_err();
         assert!(e.to_string().contains("no index 3"), "{e}");
         assert!(Override::parse("nu").is_err());

@@ -2,15 +2,15 @@
 //! only the terms the scene names, the [`Stepping`] and the [`Settings`].
 
 use crate::scene::{
-    KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, Scene, SolverSpec, SteppingSpec, ZoneKind,
-    ZonalEnergyName,
+    KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, Scene, SolverSpec, SteppingSpec,
+    ZonalEnergyName, ZoneKind,
 };
 use crate::selection::Selections;
 use crate::SceneError;
 use isochor_mesh::{generate, TetMesh, Vec3, Zones};
 use isochor_solvers::{
-    Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Problem, Settings, Stepping,
-    ZonalEnergy,
+    Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Problem, Settings,
+    Stepping, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -85,18 +85,34 @@ fn vec3(a: [f64; 3]) -> Vec3 {
 /// Generates or reads the mesh.
 pub fn build_mesh(spec: &MeshSpec) -> Result<TetMesh, SceneError> {
     let mesh = match spec {
-        MeshSpec::Box { min, max, res, cells, .. } => {
-            generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))?
-        }
-        MeshSpec::Cylinder { radius, height, res } => generate::cylinder(*radius, *height, *res)?,
-        MeshSpec::Puck { radius, height, res } => generate::puck(*radius, *height, *res)?,
+        MeshSpec::Box {
+            min,
+            max,
+            res,
+            cells,
+            ..
+        } => generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))?,
+        MeshSpec::Cylinder {
+            radius,
+            height,
+            res,
+        } => generate::cylinder(*radius, *height, *res)?,
+        MeshSpec::Puck {
+            radius,
+            height,
+            res,
+        } => generate::puck(*radius, *height, *res)?,
         MeshSpec::Tube {
             inner_radius,
             outer_radius,
             height,
             res,
         } => generate::tube(*inner_radius, *outer_radius, *height, *res)?.mesh,
-        MeshSpec::Ball { radius, res, center } => {
+        MeshSpec::Ball {
+            radius,
+            res,
+            center,
+        } => {
             let ball = generate::ball(*radius, *res)?;
             let c = vec3(*center);
             if c == Vec3::zeros() {
@@ -117,7 +133,11 @@ pub fn build_mesh(spec: &MeshSpec) -> Result<TetMesh, SceneError> {
 /// Reads a mesh file by its extension.
 pub fn read_mesh_file(path: &Path) -> Result<TetMesh, SceneError> {
     const VALID: &str = ".msh (Gmsh), .node/.ele (TetGen), .vtu";
-    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
     if !matches!(ext.as_str(), "msh" | "node" | "ele" | "vtu") {
         return Err(SceneError::Invalid {
             origin: path.display().to_string(),
@@ -142,7 +162,7 @@ pub fn read_mesh_file(path: &Path) -> Result<TetMesh, SceneError> {
         }
         _ => check(path)?,
     }
-    crate::meshio::read(path, &ext)
+    Ok(isochor_mesh::io::read_mesh(path)?)
 }
 
 /// Material parameters from a scene's `[material]` table.
@@ -217,7 +237,11 @@ fn motion(spec: &MotionSpec) -> Motion {
     }
 }
 
-fn build_zones(scene: &Scene, mesh: &TetMesh, selections: &Selections<'_>) -> Result<Zones, SceneError> {
+fn build_zones(
+    scene: &Scene,
+    mesh: &TetMesh,
+    selections: &Selections<'_>,
+) -> Result<Zones, SceneError> {
     let Some(spec) = &scene.zones else {
         return Ok(Zones::global(mesh));
     };
@@ -266,7 +290,8 @@ pub fn settings(spec: &SolverSpec) -> Settings {
         s.project_hessians = v;
     }
     let iterative = spec.linear == Some(LinearName::Iterative)
-        || (spec.linear.is_none() && (spec.linear_tolerance.is_some() || spec.linear_max_iterations.is_some()));
+        || (spec.linear.is_none()
+            && (spec.linear_tolerance.is_some() || spec.linear_max_iterations.is_some()));
     if iterative {
         s.linear = LinearSolver::Iterative {
             tolerance: spec.linear_tolerance.unwrap_or(1e-8),

@@ -63,7 +63,9 @@ pub struct MethodName(pub Method);
 impl TryFrom<String> for MethodName {
     type Error = String;
     fn try_from(s: String) -> Result<Self, String> {
-        s.parse::<Method>().map(MethodName).map_err(|e| e.to_string())
+        s.parse::<Method>()
+            .map(MethodName)
+            .map_err(|e| e.to_string())
     }
 }
 
@@ -94,9 +96,17 @@ pub enum MeshSpec {
         res_multiple_of: usize,
     },
     /// A solid cylinder about the z axis from `z = 0` to `height`.
-    Cylinder { radius: f64, height: f64, res: usize },
+    Cylinder {
+        radius: f64,
+        height: f64,
+        res: usize,
+    },
     /// A puck (short cylinder with at least `res` layers).
-    Puck { radius: f64, height: f64, res: usize },
+    Puck {
+        radius: f64,
+        height: f64,
+        res: usize,
+    },
     /// A thick-walled tube about the z axis from `z = 0` to `height`.
     Tube {
         inner_radius: f64,
@@ -119,6 +129,20 @@ pub enum MeshSpec {
     /// A mesh file: Gmsh `.msh`, TetGen `.node`/`.ele` (either name), or `.vtu`. A relative
     /// path is resolved against the scene file's folder (or the working directory).
     File { path: PathBuf },
+}
+
+/// The message without the "in `key`" line the TOML deserializer appends (the key is
+/// reported separately).
+fn first_line(message: &str) -> String {
+    message
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with("in `"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 fn ones() -> [usize; 3] {
@@ -155,7 +179,7 @@ pub struct MaterialSpec {
     /// Base Poisson ratio of the augmented dual solver, or `0` for plain dual ascent.
     pub dual_base_nu: Option<f64>,
     /// Whether the epidermis surface energy (eq. 16 of Sheen et al.) is on.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "is_false")]
     pub epidermis: bool,
     /// Young's modulus of the epidermis (Pa).
     pub epidermis_young: Option<f64>,
@@ -203,10 +227,10 @@ pub struct SelectionSpec {
     /// Points within `radius` of `center`.
     pub sphere: Option<SphereSpec>,
     /// Only vertices of the boundary surface.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "is_false")]
     pub surface: bool,
     /// Everything (the whole mesh).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "is_false")]
     pub all: bool,
     /// Explicit vertex indices (only for generated meshes whose numbering is known).
     pub vertices: Option<Vec<usize>>,
@@ -512,21 +536,21 @@ impl Scene {
             SceneError::Invalid {
                 origin: origin.to_string(),
                 key: if key == "." { String::new() } else { key },
-                message: e.into_inner().to_string(),
+                message: first_line(&e.into_inner().to_string()),
             }
         })?;
         scene.validate(origin)?;
         Ok(scene)
     }
 
-    /// The scene as a TOML value tree (for overrides).
+    /// The scene as a TOML value tree.
     pub fn to_value(&self) -> toml::Value {
         toml::Value::try_from(self).expect("a scene always serializes")
     }
 
     /// The scene as TOML text.
     pub fn to_toml_string(&self) -> String {
-        toml::to_string_pretty(self).expect("a scene always serializes")
+        toml::to_string(self).expect("a scene always serializes")
     }
 
     /// The method.
@@ -554,7 +578,13 @@ impl Scene {
             key: key.to_string(),
             message,
         };
-        let names = || self.selections.keys().cloned().collect::<Vec<_>>().join(", ");
+        let names = || {
+            self.selections
+                .keys()
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         let check_selection = |key: String, name: &str| {
             if self.selections.contains_key(name) {
                 Ok(())
@@ -588,7 +618,10 @@ impl Scene {
             }
             if let Some(t) = s.tolerance {
                 if !(t.is_finite() && t >= 0.0) {
-                    return Err(bad(&format!("{key}.tolerance"), format!("{t} must be finite and >= 0")));
+                    return Err(bad(
+                        &format!("{key}.tolerance"),
+                        format!("{t} must be finite and >= 0"),
+                    ));
                 }
             }
         }
@@ -597,7 +630,10 @@ impl Scene {
             if d.axes.is_empty() || !d.axes.chars().all(|c| matches!(c, 'x' | 'y' | 'z')) {
                 return Err(bad(
                     &format!("dirichlet.{i}.axes"),
-                    format!("'{}' must be letters among x, y, z (e.g. \"xyz\", \"z\")", d.axes),
+                    format!(
+                        "'{}' must be letters among x, y, z (e.g. \"xyz\", \"z\")",
+                        d.axes
+                    ),
                 ));
             }
         }
@@ -631,7 +667,10 @@ impl Scene {
                     point, selection, ..
                 } => {
                     if point.is_some() == selection.is_some() {
-                        return Err(bad(&key, "a displacement probe needs exactly one of point and selection".into()));
+                        return Err(bad(
+                            &key,
+                            "a displacement probe needs exactly one of point and selection".into(),
+                        ));
                     }
                     if let Some(s) = selection {
                         check_selection(format!("{key}.selection"), s)?;
@@ -647,12 +686,15 @@ impl Scene {
             }
         }
         match self.stepping {
-            SteppingSpec::QuasiStatic { steps } if steps == 0 => {
+            SteppingSpec::QuasiStatic { steps: 0 } => {
                 return Err(bad("stepping.steps", "at least one step is needed".into()))
             }
             SteppingSpec::Dynamic { dt, frames } => {
                 if frames == 0 {
-                    return Err(bad("stepping.frames", "at least one frame is needed".into()));
+                    return Err(bad(
+                        "stepping.frames",
+                        "at least one frame is needed".into(),
+                    ));
                 }
                 if !(dt.is_finite() && dt > 0.0) {
                     return Err(bad("stepping.dt", format!("{dt} must be finite and > 0")));
@@ -692,9 +734,8 @@ impl Scene {
         }
         for (variant, sets) in &self.variants {
             for key in sets.keys() {
-                crate::overrides::check_key_syntax(key).map_err(|m| {
-                    bad(&format!("variants.{variant}.{key}"), m)
-                })?;
+                crate::overrides::check_key_syntax(key)
+                    .map_err(|m| bad(&format!("variants.{variant}.{key}"), m))?;
             }
         }
         Ok(())

@@ -18,7 +18,10 @@ pub struct Selections<'a> {
 
 impl<'a> Selections<'a> {
     /// Prepares the selections of `specs` on `mesh`.
-    pub fn new(mesh: &'a TetMesh, specs: &'a BTreeMap<String, SelectionSpec>) -> Result<Self, SceneError> {
+    pub fn new(
+        mesh: &'a TetMesh,
+        specs: &'a BTreeMap<String, SelectionSpec>,
+    ) -> Result<Self, SceneError> {
         let (lo, hi) = mesh.bounding_box();
         Ok(Selections {
             mesh,
@@ -119,7 +122,9 @@ fn region(spec: &SelectionSpec, default_tolerance: f64) -> Result<Region, String
         if norm.is_finite() && norm > 0.0 {
             Ok(n / norm)
         } else {
-            Err(format!("{what} must be a finite non-zero vector, not {a:?}"))
+            Err(format!(
+                "{what} must be a finite non-zero vector, not {a:?}"
+            ))
         }
     };
     let mut parts: Vec<Region> = Vec::new();
@@ -128,7 +133,9 @@ fn region(spec: &SelectionSpec, default_tolerance: f64) -> Result<Region, String
     }
     if let Some(p) = &spec.plane {
         let (point, normal) = (v(p.point), unit(p.normal, "plane.normal")?);
-        parts.push(Region::predicate(move |x| ((x - point).dot(&normal)).abs() <= tol));
+        parts.push(Region::predicate(move |x| {
+            ((x - point).dot(&normal)).abs() <= tol
+        }));
     }
     if let Some(p) = &spec.half_space {
         let (point, normal) = (v(p.point), unit(p.normal, "half_space.normal")?);
@@ -149,11 +156,17 @@ fn region(spec: &SelectionSpec, default_tolerance: f64) -> Result<Region, String
     if let Some(s) = &spec.sphere {
         let (center, radius) = (v(s.center), s.radius);
         if !(radius.is_finite() && radius >= 0.0) {
-            return Err(format!("sphere.radius must be finite and >= 0, not {radius}"));
+            return Err(format!(
+                "sphere.radius must be finite and >= 0, not {radius}"
+            ));
         }
-        parts.push(Region::predicate(move |x| (x - center).norm() <= radius + tol));
+        parts.push(Region::predicate(move |x| {
+            (x - center).norm() <= radius + tol
+        }));
     }
-    Ok(Region::predicate(move |x| parts.iter().all(|r| r.contains(x))))
+    Ok(Region::predicate(move |x| {
+        parts.iter().all(|r| r.contains(x))
+    }))
 }
 
 #[cfg(test)]
@@ -215,6 +228,10 @@ mod tests {
         assert!(s.tets("left").is_err(), "no centroid lies on the plane");
         let e = s.vertices("nowhere").unwrap_err().to_string();
         assert!(e.contains("nowhere") && e.contains("no vertex"), "{e}");
-        assert!(s.vertices("undefined").unwrap_err().to_string().contains("defined: corner, left, nowhere"));
+        assert!(s
+            .vertices("undefined")
+            .unwrap_err()
+            .to_string()
+            .contains("defined: corner, left, nowhere"));
     }
 }

@@ -1,9 +1,14 @@
 //! Dual ascent / nonlinear Uzawa (eq. 39-41 of Francu et al. 2021): alternate a primal
-//! Newton solve of `min_x L(x, p_k)` with a steepest-ascent step on the multipliers,
-//! `p_{k+1} = p_k + omega theta`, `theta = phi(x) - C p` and
-//! `omega = theta^T theta / theta^T (A_2 + C) theta` (eq. 41) where `A_2 theta = G z`,
-//! `(M/h^2 + K) z = G^T theta` reuses the primal factorization. With a base Poisson ratio the
-//! primal energy carries the augmented term of sec. 8.3 (see [`crate::terms::AugmentedConstraints`]).
+//! Newton solve of `min_x L(x, p_k)` (eq. 39) with an ascent step on the multipliers,
+//! `p_{k+1} = p_k + omega d` (eq. 40), along the dual gradient `theta = phi(x) - C p`, with
+//! the exact step of eq. 41 generalized to a direction `d`:
+//! `omega = theta^T d / d^T (A_2 + C) d`, where `A_2 d = G z` and `(M/h^2 + K) z = G^T d`
+//! reuse the primal factorization. With [`crate::Settings::dual_conjugate`] the directions
+//! are conjugated (Polak-Ribiere, restarted when not an ascent direction): the conjugate
+//! gradient counterpart, in Shewchuk 1994 (the paper's reference for eq. 41), of its
+//! steepest ascent, which it reduces to on the first iteration and when disabled. With a
+//! base Poisson ratio the primal energy carries the augmented term of sec. 8.3 (see
+//! [`crate::terms::AugmentedConstraints`]).
 
 use crate::newton::Newton;
 use crate::step::{max_abs, StepTarget};
@@ -32,14 +37,19 @@ pub fn solve(
     };
     let m = p.len();
     let mut phi = vec![0.0; m];
+    let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
+    let mut dual_converged = false;
     for _ in 0..settings.max_dual_iterations {
         augmented.set_multipliers(p);
+        // Inexact primal solves: one Newton iteration per dual update (the "single linear
+        // solve" of sec. 8.3) until the constraints are met, then a converged primal solve.
         let mut primal = StepReport::default();
-        let result = newton.minimize(system, x, target, &mut primal);
+        let limit = if dual_converged { settings.max_iterations } else { 1 };
+        let result = newton.iterate(system, x, target, &mut primal, limit);
         report.iterations.extend(primal.iterations);
         report.timings += primal.timings;
         report.force_residual = primal.force_residual;
-        result?;
+        let primal_converged = result?;
         constraints.values(x, &mut phi)?;
         let theta: Vec<f64> = (0..m).map(|i| phi[i] - compliance[i] * p[i]).collect();
         let residual = max_abs(
@@ -50,11 +60,28 @@ pub fn solve(
                 .collect::<Vec<_>>(),
         );
         report.constraint_residual = residual;
-        if residual <= settings.constraint_tolerance {
+        dual_converged = residual <= settings.constraint_tolerance;
+        if dual_converged && primal_converged {
             report.converged = true;
             return Ok(());
         }
-        // A_2 theta = G z with (M/h^2 + K) z = G^T theta, on free DOFs, reusing the factor.
+        if dual_converged {
+            continue;
+        }
+        // Direction: theta, conjugated against the previous one (Polak-Ribiere+).
+        let theta_sq: f64 = theta.iter().map(|t| t * t).sum();
+        let mut direction = theta.clone();
+        if let (true, Some((prev_theta, prev_direction))) = (settings.dual_conjugate, &previous) {
+            let prev_sq: f64 = prev_theta.iter().map(|t: &f64| t * t).sum();
+            let beta = (theta.iter().zip(prev_theta).map(|(a, b)| a * (a - b)).sum::<f64>() / prev_sq).max(0.0);
+            for (d, pd) in direction.iter_mut().zip(prev_direction) {
+                *d += beta * pd;
+            }
+            if direction.iter().zip(&theta).map(|(d, t)| d * t).sum::<f64>() <= 0.0 {
+                direction.clone_from(&theta);
+            }
+        }
+        // A_2 d = G z with (M/h^2 + K) z = G^T d, on free DOFs, reusing the factor.
         let start = Instant::now();
         let jacobian = system.jacobian.as_ref().expect("dual system has a Jacobian layout");
         constraints.jacobian_values(x, &mut system.jacobian_values)?;
@@ -62,31 +89,32 @@ pub fn solve(
         let g = g.as_ref();
         let nf = model.dofs.num_free();
         let mut z = vec![0.0; nf];
-        for col in 0..nf {
-            z[col] = g.row_idx_of_col(col).zip(g.val_of_col(col)).map(|(r, v)| v * theta[r]).sum();
+        for (col, zc) in z.iter_mut().enumerate() {
+            *zc = g.row_idx_of_col(col).zip(g.val_of_col(col)).map(|(r, v)| v * direction[r]).sum();
         }
         newton
             .cholesky()
             .solve_in_place(&mut z)
             .map_err(|e| SolverError::Linear(e.to_string()))?;
-        let mut a2_theta = vec![0.0; m];
-        for col in 0..nf {
+        let mut a2_d = vec![0.0; m];
+        for (col, zc) in z.iter().enumerate() {
             for (r, v) in g.row_idx_of_col(col).zip(g.val_of_col(col)) {
-                a2_theta[r] += v * z[col];
+                a2_d[r] += v * zc;
             }
         }
-        let numerator: f64 = theta.iter().map(|t| t * t).sum();
-        let denominator: f64 = (0..m).map(|i| theta[i] * (a2_theta[i] + compliance[i] * theta[i])).sum();
+        let numerator: f64 = theta.iter().zip(&direction).map(|(t, d)| t * d).sum();
+        let denominator: f64 = (0..m).map(|i| direction[i] * (a2_d[i] + compliance[i] * direction[i])).sum();
         report.timings.solve += start.elapsed();
-        if !(denominator > 0.0 && numerator.is_finite()) {
+        if !(denominator > 0.0 && numerator.is_finite() && theta_sq.is_finite()) {
             return Err(SolverError::Linear(format!(
-                "the dual step (eq. 41) is undefined: theta^T (A2 + C) theta = {denominator:e}"
+                "the dual step (eq. 41) is undefined: d^T (A2 + C) d = {denominator:e}"
             )));
         }
         let omega = numerator / denominator;
         for i in 0..m {
-            p[i] += omega * theta[i];
+            p[i] += omega * direction[i];
         }
+        previous = Some((theta, direction));
     }
     Err(SolverError::NotConverged {
         iterations: report.iterations.len(),

@@ -42,9 +42,31 @@ impl Newton {
         target: &StepTarget,
         report: &mut StepReport,
     ) -> Result<(), SolverError> {
+        if self.iterate(system, x, target, report, system.settings.max_iterations)? {
+            Ok(())
+        } else {
+            Err(SolverError::NotConverged {
+                iterations: system.settings.max_iterations,
+                force_residual: report.force_residual,
+                constraint_residual: 0.0,
+            })
+        }
+    }
+
+    /// At most `iterations` Newton iterations; returns whether the tolerances were met
+    /// (the check costs an assembly, so `iterations = 1` may return `false` after a step
+    /// that reached them).
+    pub fn iterate(
+        &mut self,
+        system: &mut System<'_>,
+        x: &mut [Vec3],
+        target: &StepTarget,
+        report: &mut StepReport,
+        iterations: usize,
+    ) -> Result<bool, SolverError> {
         let settings = system.settings;
         let dofs = &system.model.dofs;
-        for _ in 0..settings.max_iterations {
+        for _ in 0..iterations {
             let d_fixed = gap(x, &target.prescribed, 3 * x.len());
             let eval = system.assemble(x, target.load, None)?;
             let residual = dofs.gather(&eval.gradient);
@@ -55,7 +77,7 @@ impl Newton {
             }
             if force <= target.force_tolerance && max_abs(&d_fixed) == 0.0 {
                 report.converged = true;
-                return Ok(());
+                return Ok(true);
             }
             let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
             system
@@ -118,10 +140,6 @@ impl Newton {
                 regularization: shift,
             });
         }
-        Err(SolverError::NotConverged {
-            iterations: settings.max_iterations,
-            force_residual: report.force_residual,
-            constraint_residual: 0.0,
-        })
+        Ok(false)
     }
 }

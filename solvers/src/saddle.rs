@@ -25,11 +25,24 @@ use std::time::Instant;
 /// Armijo constant of the merit decrease.
 const ARMIJO: f64 = 1e-4;
 
+/// Full steps per solve that may increase the merit (watchdog).
+const WATCHDOG_STEPS: usize = 3;
+
 /// The linear solver of the saddle-point step.
 #[derive(Debug)]
 enum Linear {
     Direct(Box<KktSolver>),
-    Schur(Box<CholeskySolver>),
+    Schur(Box<Schur>),
+}
+
+/// The Schur complement solve of the zonal KKT system: `K` factorized by Cholesky, the few
+/// dense rows of `G`, `Z = K^-1 G^T` and `S = G Z + C` (dense, m x m).
+#[derive(Debug)]
+struct Schur {
+    cholesky: CholeskySolver,
+    rows: DMatrix<f64>,
+    z: DMatrix<f64>,
+    schur: DMatrix<f64>,
 }
 
 /// Saddle-point Newton with its factorizations, kept across steps.
@@ -67,9 +80,12 @@ impl SaddleNewton {
         };
         let jacobian = system.jacobian.as_ref().ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
         let linear = match system.model.strategy {
-            Strategy::SaddleSchur => Linear::Schur(Box::new(
-                CholeskySolver::new(system.hessian.pattern().symbolic()).map_err(linear_error)?,
-            )),
+            Strategy::SaddleSchur => Linear::Schur(Box::new(Schur {
+                cholesky: CholeskySolver::new(system.hessian.pattern().symbolic()).map_err(linear_error)?,
+                rows: DMatrix::zeros(0, 0),
+                z: DMatrix::zeros(0, 0),
+                schur: DMatrix::zeros(0, 0),
+            })),
             _ => {
                 let dofs = &system.model.dofs;
                 let anchors: Vec<Option<usize>> = (0..m)
@@ -151,6 +167,7 @@ impl SaddleNewton {
             f * f + c * c
         };
         let n_dofs = 3 * x.len();
+        let mut nonmonotone_budget = WATCHDOG_STEPS;
         for _ in 0..settings.max_iterations {
             let d_fixed = gap(x, &target.prescribed, n_dofs);
             let eval = system.assemble(x, target.load, Some(p))?;
@@ -186,13 +203,17 @@ impl SaddleNewton {
             let g = jacobian.matrix(&system.jacobian_values)?;
             report.timings.assembly += system.take_assembly_time();
 
-            let (dx, dp, shift) = self.linear_step(k, g, rhs_x, rhs_p, nf, report)?;
+            let shift = self.factorize(k, g, report)?;
+            let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
 
             let mut direction = d_fixed.clone();
             for (&dof, v) in system.model.dofs.free().iter().zip(&dx) {
                 direction[dof] = *v;
             }
             let merit0 = merit(&sigma_f, &theta);
+            let acceptable = |m: f64, alpha: f64| {
+                m.is_finite() && (moving_boundary || merit0 <= 100.0 || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0)
+            };
             let mut alpha = 1.0;
             let mut accepted = None;
             for backtracks in 0..=settings.max_backtracks {
@@ -201,11 +222,39 @@ impl SaddleNewton {
                 let trial_p: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + alpha * b).collect();
                 if system.is_valid(&trial_x) {
                     let (s, t) = self.residuals(system, &trial_x, &trial_p, target.load)?;
-                    let m = merit(&system.model.dofs.gather(&s), &t);
-                    let near = merit0 <= 100.0;
-                    if m.is_finite() && (moving_boundary || near || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0) {
+                    let s_f = system.model.dofs.gather(&s);
+                    let m = merit(&s_f, &t);
+                    // Watchdog: a few full steps may raise the merit (the Maratos effect of
+                    // the curved volume constraints); Newton's quadratic convergence then
+                    // brings it down within an iteration or two.
+                    let watchdog = backtracks == 0 && m.is_finite() && nonmonotone_budget > 0;
+                    if acceptable(m, alpha) || watchdog {
+                        if !acceptable(m, alpha) {
+                            nonmonotone_budget -= 1;
+                        }
                         accepted = Some((trial_x, trial_p, backtracks));
                         break;
+                    }
+                    if backtracks == 0 {
+                        // Second-order (chord) correction against the Maratos effect: one more
+                        // solve with the same factorization from the full step.
+                        let f: Vec<f64> = s_f.iter().map(|v| -v).collect();
+                        let h: Vec<f64> = t.iter().map(|v| -v).collect();
+                        let (cx, cp) = self.solve_factorized(f, h, report)?;
+                        let mut corrected_x = trial_x.clone();
+                        let mut full = vec![0.0; n_dofs];
+                        for (&dof, v) in system.model.dofs.free().iter().zip(&cx) {
+                            full[dof] = *v;
+                        }
+                        add_scaled(&mut corrected_x, &full, 1.0);
+                        let corrected_p: Vec<f64> = trial_p.iter().zip(&cp).map(|(a, b)| a + b).collect();
+                        if system.is_valid(&corrected_x) {
+                            let (s, t) = self.residuals(system, &corrected_x, &corrected_p, target.load)?;
+                            if acceptable(merit(&system.model.dofs.gather(&s), &t), 1.0) {
+                                accepted = Some((corrected_x, corrected_p, 0));
+                                break;
+                            }
+                        }
                     }
                 }
                 alpha *= 0.5;
@@ -237,41 +286,30 @@ impl SaddleNewton {
         })
     }
 
-    /// Solves the linearized KKT system for `(dx, dp)`; returns the stiffness shift used.
-    fn linear_step(
+    /// Factorizes the KKT matrix (shifting `K` until the inertia is right); returns the
+    /// shift used.
+    fn factorize(
         &mut self,
         k: SparseColMat<usize, f64>,
         g: SparseColMat<usize, f64>,
-        rhs_x: Vec<f64>,
-        rhs_p: Vec<f64>,
-        nf: usize,
         report: &mut StepReport,
-    ) -> Result<(Vec<f64>, Vec<f64>, f64), SolverError> {
-        match &mut self.linear {
-            Linear::Direct(kkt) => {
-                let start = Instant::now();
-                let shift = kkt
-                    .factorize_with_shifts(k.as_ref(), g.as_ref(), self.compliance.as_ref().map(|c| c.as_ref()), &ShiftSchedule::default())
-                    .map_err(linear_error)?;
-                report.timings.factorization += start.elapsed();
-                let start = Instant::now();
-                let mut rhs = rhs_x;
-                rhs.extend(rhs_p);
-                kkt.solve_in_place(&mut rhs).map_err(linear_error)?;
-                report.timings.solve += start.elapsed();
-                let dp = rhs.split_off(nf);
-                Ok((rhs, dp, shift))
-            }
-            Linear::Schur(cholesky) => {
-                // K dx + G^T dp = f, G dx - C dp = h:
-                // dp = (G K^-1 G^T + C)^-1 (G K^-1 f - h), dx = K^-1 (f - G^T dp).
-                let start = Instant::now();
-                let shift = cholesky
+    ) -> Result<f64, SolverError> {
+        let start = Instant::now();
+        let shift = match &mut self.linear {
+            Linear::Direct(kkt) => kkt
+                .factorize_with_shifts(
+                    k.as_ref(),
+                    g.as_ref(),
+                    self.compliance.as_ref().map(|c| c.as_ref()),
+                    &ShiftSchedule::default(),
+                )
+                .map_err(linear_error)?,
+            Linear::Schur(schur) => {
+                let shift = schur
+                    .cholesky
                     .factorize_with_shifts(k.as_ref(), &ShiftSchedule::default())
                     .map_err(linear_error)?;
-                report.timings.factorization += start.elapsed();
-                let start = Instant::now();
-                let m = g.nrows();
+                let (m, nf) = (g.nrows(), g.ncols());
                 let mut rows = DMatrix::<f64>::zeros(m, nf);
                 for col in 0..nf {
                     for (row, v) in g.as_ref().row_idx_of_col(col).zip(g.as_ref().val_of_col(col)) {
@@ -281,27 +319,62 @@ impl SaddleNewton {
                 let mut z = DMatrix::<f64>::zeros(nf, m);
                 for i in 0..m {
                     let mut col: Vec<f64> = rows.row(i).iter().copied().collect();
-                    cholesky.solve_in_place(&mut col).map_err(linear_error)?;
+                    schur.cholesky.solve_in_place(&mut col).map_err(linear_error)?;
                     z.set_column(i, &DVector::from_vec(col));
                 }
-                let mut schur = &rows * &z;
+                let mut s = &rows * &z;
                 for &(r, c, v) in &self.compliance_entries {
-                    schur[(r, c)] += v;
+                    s[(r, c)] += v;
                 }
-                let mut y = rhs_x.clone();
-                cholesky.solve_in_place(&mut y).map_err(linear_error)?;
+                schur.rows = rows;
+                schur.z = z;
+                schur.schur = s;
+                shift
+            }
+        };
+        report.timings.factorization += start.elapsed();
+        Ok(shift)
+    }
+
+    /// Solves `[[K, G^T], [G, -C]] (dx, dp) = (f, h)` with the current factorization.
+    fn solve_factorized(
+        &mut self,
+        f: Vec<f64>,
+        h: Vec<f64>,
+        report: &mut StepReport,
+    ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+        let start = Instant::now();
+        let nf = f.len();
+        let result = match &mut self.linear {
+            Linear::Direct(kkt) => {
+                let mut rhs = f;
+                rhs.extend(h);
+                kkt.solve_in_place(&mut rhs).map_err(linear_error)?;
+                let dp = rhs.split_off(nf);
+                (rhs, dp)
+            }
+            Linear::Schur(schur) => {
+                // dp = (G K^-1 G^T + C)^-1 (G K^-1 f - h), dx = K^-1 f - Z dp.
+                let mut y = f;
+                schur.cholesky.solve_in_place(&mut y).map_err(linear_error)?;
                 let y = DVector::from_vec(y);
-                let b = &rows * &y - DVector::from_vec(rhs_p);
+                let b = &schur.rows * &y - DVector::from_vec(h);
                 let dp = schur
+                    .schur
                     .clone()
                     .cholesky()
                     .map(|c| c.solve(&b))
-                    .or_else(|| schur.lu().solve(&b))
-                    .ok_or_else(|| SolverError::Linear("the zone Schur complement G K^-1 G^T is singular (are two zones identical?)".into()))?;
-                let dx = y - &z * &dp;
-                report.timings.solve += start.elapsed();
-                Ok((dx.as_slice().to_vec(), dp.as_slice().to_vec(), shift))
+                    .or_else(|| schur.schur.clone().lu().solve(&b))
+                    .ok_or_else(|| {
+                        SolverError::Linear(
+                            "the zone Schur complement G K^-1 G^T is singular (are two zones identical?)".into(),
+                        )
+                    })?;
+                let dx = y - &schur.z * &dp;
+                (dx.as_slice().to_vec(), dp.as_slice().to_vec())
             }
-        }
+        };
+        report.timings.solve += start.elapsed();
+        Ok(result)
     }
 }

@@ -27,6 +27,8 @@ pub struct Settings {
     pub max_backtracks: usize,
     /// Outer iterations of the dual solver per step.
     pub max_dual_iterations: usize,
+    /// Conjugate the dual ascent directions (otherwise plain steepest ascent, eq. 41).
+    pub dual_conjugate: bool,
     /// Project element Hessians to PSD (displacement-only Newton).
     pub project_hessians: bool,
     /// Linear solver.
@@ -41,6 +43,7 @@ impl Default for Settings {
             constraint_tolerance: 1e-10,
             max_backtracks: 30,
             max_dual_iterations: 500,
+            dual_conjugate: true,
             project_hessians: false,
             linear: LinearSolver::Direct,
         }

@@ -520,3 +520,28 @@ fn krylov_failures_are_error_values() {
         Err(LinearError::DimensionMismatch { .. })
     ));
 }
+
+/// A right-hand side with a component along the spurious pressure modes has no solution
+/// at `C = 0`: the solver says so with an error value instead of returning a huge step.
+#[test]
+fn p1_box_kkt_with_inconsistent_rhs_is_an_error_value() {
+    let P1Box { k, g, anchors } = p1_box([6, 3, 3]);
+    let (n, m) = (k.nrows(), g.nrows());
+    let mut rng = Rng(17);
+    let b: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let mut solver = KktSolver::new(
+        k.symbolic(),
+        g.symbolic(),
+        None,
+        &anchors,
+        KktOptions::default(),
+    )
+    .unwrap();
+    solver.factorize(k.as_ref(), g.as_ref(), None, 0.0).unwrap();
+    let result = solver.solve(&b);
+    eprintln!("inconsistent: {result:?} {:?}", solver.report());
+    assert!(
+        matches!(result, Err(LinearError::InaccurateSolution { .. })),
+        "{result:?}"
+    );
+}

@@ -122,7 +122,12 @@ fn deform(
     displacements(mesh.num_vertices(), amplitude).prop_filter_map(
         "a tet is too compressed or inverted",
         move |u| {
-            let x = mesh.positions().iter().zip(&u).map(|(p, d)| p + d).collect();
+            let x = mesh
+                .positions()
+                .iter()
+                .zip(&u)
+                .map(|(p, d)| p + d)
+                .collect();
             let deformed = Deformed {
                 mesh: mesh.clone(),
                 x,
@@ -157,12 +162,18 @@ pub fn two_tets(rest_jitter: f64, amplitude: f64, j_min: f64) -> impl Strategy<V
 
 /// The unit cube split by [`isochor_mesh::generate::box_grid`] into `cells`, deformed by up
 /// to `amplitude` per coordinate, with every volume ratio at least `j_min`.
-pub fn deformed_box(cells: [usize; 3], amplitude: f64, j_min: f64) -> impl Strategy<Value = Deformed> {
+pub fn deformed_box(
+    cells: [usize; 3],
+    amplitude: f64,
+    j_min: f64,
+) -> impl Strategy<Value = Deformed> {
     let mesh = isochor_mesh::generate::box_grid(
         isochor_mesh::Vec3::zeros(),
         isochor_mesh::Vec3::repeat(1.0),
         cells,
-    );
-    proptest::strategy::Just(mesh).prop_filter_map("box cells must be valid", Result::ok)
+    )
+    .ok();
+    proptest::strategy::Just(mesh)
+        .prop_filter_map("box cells must be valid", |mesh| mesh)
         .prop_flat_map(move |mesh| deform(mesh, amplitude, j_min))
 }

@@ -11,7 +11,10 @@ const MAX_RES: usize = 1024;
 /// `(x, y) -> (x sqrt(1 - y^2/2), y sqrt(1 - x^2/2))` (Fong, "Analytical methods for squaring
 /// the disc", 2014): smooth inside, and the square's boundary lands exactly on the circle.
 pub(crate) fn square_to_disk(x: f64, y: f64) -> (f64, f64) {
-    (x * (1.0 - 0.5 * y * y).sqrt(), y * (1.0 - 0.5 * x * x).sqrt())
+    (
+        x * (1.0 - 0.5 * y * y).sqrt(),
+        y * (1.0 - 0.5 * x * x).sqrt(),
+    )
 }
 
 /// A solid cylinder of `radius` with axis z from 0 to `height`.
@@ -40,7 +43,12 @@ pub fn puck(radius: f64, height: f64, res: usize) -> Result<TetMesh, MeshError> 
     extruded_disk(radius, height, res, layers)
 }
 
-fn extruded_disk(radius: f64, height: f64, res: usize, layers: usize) -> Result<TetMesh, MeshError> {
+fn extruded_disk(
+    radius: f64,
+    height: f64,
+    res: usize,
+    layers: usize,
+) -> Result<TetMesh, MeshError> {
     let lattice = Lattice {
         cells: [2 * res, 2 * res, layers],
         periodic: [false; 3],

@@ -12,7 +12,11 @@ pub fn box_grid(min: Vec3, max: Vec3, cells: [usize; 3]) -> Result<TetMesh, Mesh
     let names = ["nx", "ny", "nz"];
     for (axis, &n) in cells.iter().enumerate() {
         if n == 0 {
-            return Err(MeshError::parameter(names[axis], n, "at least one cell is needed"));
+            return Err(MeshError::parameter(
+                names[axis],
+                n,
+                "at least one cell is needed",
+            ));
         }
         if !(min[axis].is_finite() && max[axis].is_finite() && max[axis] > min[axis]) {
             return Err(MeshError::parameter(
@@ -50,7 +54,10 @@ mod tests {
         assert_eq!(mesh.num_vertices(), 9 * 3 * 3);
         let exact = 0.2 * 0.05 * 0.05;
         assert!((mesh.rest_volume() - exact).abs() < 1e-15 * exact * 100.0);
-        assert_eq!(mesh.positions()[1 + 9 * (2 + 3)], Vec3::new(0.025, 0.05, 0.025));
+        assert_eq!(
+            mesh.positions()[1 + 9 * (2 + 3)],
+            Vec3::new(0.025, 0.05, 0.025)
+        );
     }
 
     #[test]

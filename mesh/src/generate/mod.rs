@@ -1,11 +1,15 @@
 //! Mesh generators. Every generator takes a resolution, returns positively oriented tets
 //! (the constructor re-orients none) and places boundary vertices on the analytic surface.
+//! The disk and ball maps are singular at the corners of the square or cube they map, so the
+//! worst tet there flattens as `res` grows (normalized volume `V / l_max^3` relative to the
+//! regular tet: Kuhn box 0.27; cylinder 0.20 at res 4, 0.11 at res 8; ball 0.19 at res 4,
+//! 0.07 at res 8).
 //!
 //! | generator | tets |
 //! |---|---|
 //! | [`box_grid`] `[nx, ny, nz]` | `6 nx ny nz` |
 //! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) |
-//! | [`tube`] `res` | `6 res n_theta n_z` (cells about `(r_o - r_i) / res` wide) |
+//! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) |
 //! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) |
 
 mod ball;
@@ -35,7 +39,11 @@ fn resolution(res: usize, max: usize) -> Result<usize, MeshError> {
     if (1..=max).contains(&res) {
         Ok(res)
     } else {
-        Err(MeshError::parameter("res", res, format!("must be in 1..={max}")))
+        Err(MeshError::parameter(
+            "res",
+            res,
+            format!("must be in 1..={max}"),
+        ))
     }
 }
 

@@ -57,15 +57,25 @@ pub fn tube(
     let positions = points
         .iter()
         .map(|&[i, j, k]| {
-            let r = if i == nr { ro } else { ri + (ro - ri) * i as f64 / nr as f64 };
+            let r = if i == nr {
+                ro
+            } else {
+                ri + (ro - ri) * i as f64 / nr as f64
+            };
             let theta = 2.0 * PI * j as f64 / nt as f64;
-            Vec3::new(r * theta.cos(), r * theta.sin(), height * k as f64 / nz as f64)
+            Vec3::new(
+                r * theta.cos(),
+                r * theta.sin(),
+                height * k as f64 / nz as f64,
+            )
         })
         .collect();
     let mesh = TetMesh::new(positions, lattice.tets())?;
     let surface = mesh.boundary()?;
     let part = |name: &str, axis: usize, layer: usize| {
-        FaceSelection::from_filter(name, &surface, |t| t.iter().all(|&v| points[v][axis] == layer))
+        FaceSelection::from_filter(name, &surface, |t| {
+            t.iter().all(|&v| points[v][axis] == layer)
+        })
     };
     Ok(TubeMesh {
         inner: part("inner", 0, 0),

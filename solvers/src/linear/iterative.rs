@@ -116,7 +116,7 @@ pub fn cg(
         iterations += 1;
         a.apply(&p, &mut ap);
         let pap = dot(&p, &ap);
-        if !(pap > 0.0) {
+        if pap <= 0.0 || pap.is_nan() {
             return Err(LinearError::Breakdown {
                 method: METHOD,
                 iterations,
@@ -218,7 +218,7 @@ pub fn minres(
         m.apply(&r2, &mut y);
         oldb = beta;
         let beta2 = dot(&r2, &y);
-        if !(beta2 >= 0.0) {
+        if beta2 < 0.0 || beta2.is_nan() {
             return Err(LinearError::Breakdown {
                 method: METHOD,
                 iterations,

@@ -11,12 +11,19 @@
 //! Method: symmetric diagonal scaling `S A S` (the Jacobi scales of
 //! [`super::saddle_point_diagonal`], so that pivot thresholds are scale free), an
 //! anchored fill-reducing order (see `ordering.rs`), and a supernodal `LDL^T` without
-//! pivoting whose symbolic factorization is computed once and reused. The signs of `D`
-//! give the inertia: it must be `(n, m)` for a Newton step (`K` positive definite on the
-//! null space of `G`); otherwise [`LinearError::WrongInertia`] asks the caller to shift
-//! `K` and retry. Zero or tiny pivots (the exactly singular P1-P1 KKT at `C = 0` has
-//! spurious pressure modes) trigger a sign-aware pivot regularization, followed by
-//! iterative refinement against the unregularized matrix. Sparse `LU` is the fallback.
+//! pivoting whose symbolic factorization is computed once and reused.
+//!
+//! Pivots of magnitude below `epsilon` (the exactly singular P1-P1 KKT at `C = 0` has 3
+//! spurious pressure modes on structured boxes) are replaced by `+-delta` during the
+//! factorization, keeping their sign, and the solve is refined iteratively against the
+//! unregularized matrix. Only tiny pivots are touched, so the signs of `D` still give the
+//! inertia in the same pass: `K` is positive definite on the null space of `G` exactly
+//! when `D` has `n` positive pivots (the remaining `m` are negative, or zero for redundant
+//! constraints). Otherwise [`LinearError::WrongInertia`] asks the caller to shift `K` and
+//! retry. (Regularizing with the expected signs `+1`/`-1` instead would also flip large
+//! pivots of the wrong sign, which are legitimate when `K` is indefinite only along the
+//! range of `G^T`, and would hide wrong inertia, so a second factorization would be
+//! needed for the check.) Sparse `LU` is the fallback.
 
 use super::jacobi::{diagonal, saddle_point_diagonal};
 use super::operator::{norm, LinearOperator, SymmetricLower};
@@ -41,9 +48,9 @@ use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat, Symbolic
 use faer::{Conj, MatMut, Side};
 use std::time::Instant;
 
-/// Sign-aware pivot regularization of the scaled `LDL^T` (faer's `LdltRegularization`
-/// with sign `+1` for displacement rows and `-1` for constraint rows): a pivot of the
-/// wrong sign or below `epsilon` in magnitude is replaced by `+-delta`.
+/// Pivot regularization of the scaled `LDL^T` (faer's `LdltRegularization` without
+/// prescribed signs): a pivot below `epsilon` in magnitude is replaced by `delta` with
+/// the pivot's sign.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PivotRegularization {
     /// Threshold below which a (scaled) pivot counts as zero.
@@ -64,11 +71,13 @@ impl Default for PivotRegularization {
 /// Options of [`KktSolver`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KktOptions {
-    /// Used when the plain `LDL^T` meets zero pivots; `None` disables it.
+    /// Replacement of tiny pivots; `None` disables it (tiny pivots then count as zero
+    /// and send the factorization to the `LU` fallback or fail with
+    /// [`LinearError::Singular`]).
     pub pivot_regularization: Option<PivotRegularization>,
-    /// Most pivots the regularization may replace before the matrix is declared to have
-    /// the wrong inertia (a structured P1-P1 box at `C = 0` needs 3).
-    pub max_regularized_pivots: usize,
+    /// Scaled pivots of at most this magnitude count as zero in the inertia when no
+    /// regularization is used (with regularization, the threshold is its `delta`).
+    pub zero_pivot_tolerance: f64,
     /// Most iterative refinement steps per solve.
     pub max_refinement_steps: usize,
     /// Refinement stops once the relative residual `|b - A x| / |b|` is below this.
@@ -84,7 +93,7 @@ impl Default for KktOptions {
     fn default() -> Self {
         Self {
             pivot_regularization: Some(PivotRegularization::default()),
-            max_regularized_pivots: 16,
+            zero_pivot_tolerance: 1e-10,
             max_refinement_steps: 10,
             refinement_tolerance: 1e-14,
             residual_tolerance: 1e-8,
@@ -98,7 +107,7 @@ impl Default for KktOptions {
 enum Factor {
     None,
     Ldlt,
-    Lu(Lu<usize, f64>),
+    Lu(Box<Lu<usize, f64>>),
 }
 
 /// `LDL^T` solver for `[[K, G^T], [G, -C]]` with a fixed pattern.
@@ -360,66 +369,55 @@ impl KktSolver {
         Ok(())
     }
 
-    /// Plain `LDL^T`, then the regularized one or `LU` if pivots vanish.
+    /// `LDL^T` (regularized if configured) with the inertia check; `LU` if pivots
+    /// vanish and no regularization is configured.
     fn factorize_filled(&mut self) -> Result<(), LinearError> {
         let (n, m) = (self.n, self.m);
-        let eps = self.options.pivot_regularization.map_or(0.0, |r| r.epsilon);
-        let breakdown_pivot = match self.ldlt(LdltRegularization::default()) {
-            Ok(_) => {
-                let inertia = count_inertia(&self.pivots()?, |d| d.abs() <= eps);
-                if inertia.positive == n && inertia.negative == m {
-                    return self.accept(Method::Ldlt, inertia, 0);
-                }
-                if inertia.positive > n || inertia.negative > m {
+        // Replaced pivots are exactly +-delta: count them (and anything smaller) as zero.
+        let (regularization, zero) = match self.options.pivot_regularization {
+            Some(r) => (
+                LdltRegularization {
+                    dynamic_regularization_signs: None,
+                    dynamic_regularization_delta: r.delta,
+                    dynamic_regularization_epsilon: r.epsilon,
+                },
+                r.delta,
+            ),
+            None => (
+                LdltRegularization::default(),
+                self.options.zero_pivot_tolerance,
+            ),
+        };
+        let pivot = match self.ldlt(regularization) {
+            Ok(()) => {
+                let inertia = count_inertia(&self.pivots()?, zero);
+                if inertia.positive != n || inertia.negative > m {
                     return Err(wrong_inertia(inertia, n, m));
+                }
+                if inertia.zero == 0 || self.options.pivot_regularization.is_some() {
+                    self.factor = Factor::Ldlt;
+                    self.report.method = match inertia.zero {
+                        0 => Method::Ldlt,
+                        _ => Method::RegularizedLdlt,
+                    };
+                    self.report.inertia = Some(inertia);
+                    self.report.regularized_pivots = inertia.zero;
+                    return Ok(());
                 }
                 0
             }
             Err(LinearError::Singular { pivot }) => pivot,
             Err(e) => return Err(e),
         };
-        if let Some(reg) = self.options.pivot_regularization {
-            let signs: Vec<i8> = self
-                .fwd
-                .iter()
-                .map(|&i| if i < n { 1 } else { -1 })
-                .collect();
-            let count = self.ldlt(LdltRegularization {
-                dynamic_regularization_signs: Some(&signs),
-                dynamic_regularization_delta: reg.delta,
-                dynamic_regularization_epsilon: reg.epsilon,
-            })?;
-            // Regularized pivots are exactly +-delta: count them as zero.
-            let inertia = count_inertia(&self.pivots()?, |d| d.abs() == reg.delta);
-            if count > self.options.max_regularized_pivots {
-                return Err(wrong_inertia(inertia, n, m));
-            }
-            return self.accept(Method::RegularizedLdlt, inertia, count);
-        }
         if self.options.lu_fallback {
             return self.factorize_lu();
         }
-        Err(LinearError::Singular {
-            pivot: breakdown_pivot,
-        })
+        Err(LinearError::Singular { pivot })
     }
 
-    fn accept(
-        &mut self,
-        method: Method,
-        inertia: Inertia,
-        regularized: usize,
-    ) -> Result<(), LinearError> {
-        self.factor = Factor::Ldlt;
-        self.report.method = method;
-        self.report.inertia = Some(inertia);
-        self.report.regularized_pivots = regularized;
-        Ok(())
-    }
-
-    /// One numeric `LDL^T` of the filled matrix; returns the number of regularized
-    /// pivots, or [`LinearError::Singular`] at a zero pivot.
-    fn ldlt(&mut self, regularization: LdltRegularization<'_, f64>) -> Result<usize, LinearError> {
+    /// One numeric `LDL^T` of the filled matrix, or [`LinearError::Singular`] at a zero
+    /// pivot.
+    fn ldlt(&mut self, regularization: LdltRegularization<'_, f64>) -> Result<(), LinearError> {
         self.report.factorizations += 1;
         let par = faer::get_global_parallelism();
         let symbolic = supernodal(&self.symbolic)?;
@@ -439,7 +437,7 @@ impl KktSolver {
             MemStack::new(&mut mem),
             Default::default(),
         )
-        .map(|info| info.dynamic_regularization_count)
+        .map(|_| ())
         .map_err(|LdltError::ZeroPivot { index }| LinearError::Singular { pivot: index })
     }
 
@@ -478,7 +476,7 @@ impl KktSolver {
             }
             faer::sparse::linalg::LuError::Generic(e) => e.into(),
         })?;
-        self.factor = Factor::Lu(lu);
+        self.factor = Factor::Lu(Box::new(lu));
         self.report.method = Method::Lu;
         self.report.inertia = None;
         self.report.regularized_pivots = 0;
@@ -526,10 +524,15 @@ impl KktSolver {
             });
         }
         let mut result = self.solve_refined(rhs);
-        let ldlt_failed = matches!(
-            result,
-            Err(LinearError::NonFiniteSolution | LinearError::InaccurateSolution { .. })
-        ) && matches!(self.factor, Factor::Ldlt);
+        // LU is tried when LDL^T produced NaN, or an inaccurate solution of a system it
+        // found nonsingular; a singular system (regularized pivots) with an inconsistent
+        // right-hand side has no solution, and LU would not find one either.
+        let ldlt_failed = matches!(self.factor, Factor::Ldlt)
+            && match result {
+                Err(LinearError::NonFiniteSolution) => true,
+                Err(LinearError::InaccurateSolution { .. }) => self.report.method == Method::Ldlt,
+                _ => false,
+            };
         if ldlt_failed && self.options.lu_fallback {
             let t = Instant::now();
             self.factorize_lu()?;
@@ -631,11 +634,11 @@ fn supernodal(
     }
 }
 
-/// Signs of the pivots, with `is_zero` deciding which count as zero.
-fn count_inertia(pivots: &[f64], is_zero: impl Fn(f64) -> bool) -> Inertia {
+/// Signs of the pivots; those of magnitude at most `zero` count as zero.
+fn count_inertia(pivots: &[f64], zero: f64) -> Inertia {
     let mut inertia = Inertia::default();
     for &d in pivots {
-        if is_zero(d) || !d.is_finite() {
+        if d.abs() <= zero || !d.is_finite() {
             inertia.zero += 1;
         } else if d > 0.0 {
             inertia.positive += 1;

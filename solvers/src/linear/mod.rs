@@ -5,6 +5,21 @@
 //!
 //! Symmetric matrices are given with both triangles (as the element kernels emit them)
 //! or only the lower one; the factorizations read the lower triangle (`row >= col`).
+//!
+//! Typical use in a Newton loop (patterns and symbolic factorizations built once):
+//!
+//! ```text
+//! let k_pattern = SparsityPattern::new(n, n, &k_pairs, Triangle::Lower)?;   // once
+//! let mut k = k_pattern.zeros();
+//! let mut kkt = KktSolver::new(k.symbolic(), g.symbolic(), c.map(|c| c.symbolic()),
+//!                              &anchors, KktOptions::default())?;          // once
+//! loop {
+//!     k_pattern.assemble_into(&element_values, &mut k)?;                  // every iteration
+//!     let shift = kkt.factorize_with_shifts(k.as_ref(), g.as_ref(), c, &ShiftSchedule::default())?;
+//!     kkt.solve_in_place(&mut rhs)?;            // rhs = (-sigma, -theta) -> (du, dp)
+//!     let report = kkt.report();                // times, inertia, residual, shift
+//! }
+//! ```
 
 mod cholesky;
 mod error;

@@ -10,7 +10,7 @@ pub struct Inertia {
     pub positive: usize,
     /// Negative pivots.
     pub negative: usize,
-    /// Pivots below the zero threshold, or replaced by the sign-aware regularization.
+    /// Pivots below the zero threshold, or replaced by the pivot regularization.
     pub zero: usize,
 }
 
@@ -24,7 +24,7 @@ pub enum Method {
     Cholesky,
     /// Supernodal `LDL^T` without pivot regularization.
     Ldlt,
-    /// Supernodal `LDL^T` with sign-aware pivot regularization and iterative refinement.
+    /// Supernodal `LDL^T` with tiny pivots regularized, and iterative refinement.
     RegularizedLdlt,
     /// Sparse `LU` with partial pivoting (fallback).
     Lu,
@@ -48,7 +48,7 @@ pub struct SolveReport {
     pub factor_nnz: usize,
     /// Shift added to the diagonal of `K` (absolute).
     pub shift: f64,
-    /// Pivots replaced by the sign-aware regularization of the `LDL^T` (0 if none).
+    /// Pivots replaced by the regularization of the `LDL^T` (0 if none).
     pub regularized_pivots: usize,
     /// Inertia of the accepted `LDL^T` factorization (`None` for `LL^T` and `LU`).
     pub inertia: Option<Inertia>,

@@ -1,0 +1,399 @@
+//! Gmsh `.msh` reader, ASCII formats 2.2 and 4.1: linear tetrahedra (element type 4) are
+//! read; points, lines, triangles and quads are skipped; other volume elements are rejected.
+
+use super::text::{Fields, Lines};
+use super::{assemble, read_text};
+use crate::{MeshError, TetMesh, Vec3};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Gmsh element type of the 4-node tetrahedron.
+const TET: usize = 4;
+
+/// Reads a Gmsh ASCII mesh (format 2.x or 4.1). Vertices that no tetrahedron uses are
+/// dropped; negatively oriented tets are re-oriented (see [`TetMesh::reoriented`]).
+pub fn read_gmsh(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
+    let path = path.as_ref();
+    parse(path, &read_text(path)?)
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Version {
+    V2,
+    V41,
+}
+
+/// Nodes by tag: positions and tag -> index.
+#[derive(Default)]
+struct Nodes {
+    positions: Vec<Vec3>,
+    index: HashMap<usize, usize>,
+}
+
+impl Nodes {
+    fn add(&mut self, tag: usize, p: Vec3, fields: &Fields) -> Result<(), MeshError> {
+        if self.index.insert(tag, self.positions.len()).is_some() {
+            return Err(fields.error(format!("node tag {tag} is defined twice")));
+        }
+        self.positions.push(p);
+        Ok(())
+    }
+
+    fn get(&self, tag: usize, fields: &Fields) -> Result<usize, MeshError> {
+        self.index
+            .get(&tag)
+            .copied()
+            .ok_or_else(|| fields.error(format!("node tag {tag} is not defined in $Nodes")))
+    }
+}
+
+/// Tets as node indices, with the line of each.
+#[derive(Default)]
+struct Tets {
+    tets: Vec<[usize; 4]>,
+    lines: Vec<usize>,
+}
+
+fn parse(path: &Path, text: &str) -> Result<TetMesh, MeshError> {
+    let mut lines = Lines::new(path, text, None);
+    let mut version = None;
+    let mut nodes: Option<Nodes> = None;
+    let mut tets: Option<Tets> = None;
+    while let Some((line, header)) = lines.next_line() {
+        if !header.starts_with('$') {
+            return Err(lines.error(
+                line,
+                format!("expected a section header such as $Nodes, found `{header}`"),
+            ));
+        }
+        let name = &header[1..];
+        match (name, version) {
+            ("MeshFormat", _) => version = Some(mesh_format(&mut lines)?),
+            (_, None) => {
+                return Err(lines.error(line, "expected $MeshFormat first: this is not a Gmsh file"))
+            }
+            ("Nodes", Some(v)) => nodes = Some(read_nodes(&mut lines, v)?),
+            ("Elements", Some(v)) => {
+                let Some(nodes) = &nodes else {
+                    return Err(lines.error(line, "$Elements must come after $Nodes"));
+                };
+                tets = Some(read_elements(&mut lines, v, nodes)?);
+            }
+            _ => skip_section(&mut lines, name)?,
+        }
+        if !matches!(name, "MeshFormat" | "Nodes" | "Elements") {
+            continue;
+        }
+        let end = format!("$End{name}");
+        let fields = lines.fields(&end)?;
+        if fields.text != end {
+            return Err(fields.error(format!("expected {end}, found `{}`", fields.text)));
+        }
+    }
+    if version.is_none() {
+        return Err(lines.eof("$MeshFormat: this is not a Gmsh file"));
+    }
+    let (Some(nodes), Some(tets)) = (nodes, tets) else {
+        return Err(lines.eof("a $Nodes and an $Elements section"));
+    };
+    assemble(path, nodes.positions, tets.tets, &tets.lines)
+}
+
+/// `version file-type data-size`: ASCII 2.x or 4.1 only.
+fn mesh_format(lines: &mut Lines) -> Result<Version, MeshError> {
+    let mut f = lines.fields("the format line `version file-type data-size`")?;
+    let text = f.text;
+    let version = f.f64("the format version")?;
+    let file_type = f.usize("the file type (0 = ASCII)")?;
+    if file_type != 0 {
+        return Err(f.error(format!(
+            "binary Gmsh files are not supported (`{text}`): save as ASCII format 4.1 or 2.2"
+        )));
+    }
+    if (2.0..3.0).contains(&version) {
+        Ok(Version::V2)
+    } else if version == 4.1 {
+        Ok(Version::V41)
+    } else {
+        Err(f.error(format!(
+            "unsupported Gmsh format version {version}: save as ASCII format 4.1 or 2.2"
+        )))
+    }
+}
+
+/// Skips an unknown section up to its `$End` marker.
+fn skip_section(lines: &mut Lines, name: &str) -> Result<(), MeshError> {
+    let end = format!("$End{name}");
+    while let Some((_, text)) = lines.next_line() {
+        if text == end {
+            return Ok(());
+        }
+    }
+    Err(lines.eof(&end))
+}
+
+fn read_nodes(lines: &mut Lines, version: Version) -> Result<Nodes, MeshError> {
+    let mut nodes = Nodes::default();
+    let xyz = |f: &mut Fields| -> Result<Vec3, MeshError> {
+        Ok(Vec3::new(
+            f.f64("x coordinate")?,
+            f.f64("y coordinate")?,
+            f.f64("z coordinate")?,
+        ))
+    };
+    match version {
+        Version::V2 => {
+            let count = lines
+                .data("the number of nodes")?
+                .usize("the number of nodes")?;
+            for i in 0..count {
+                let what = format!("node {} of {count} (`tag x y z`)", i + 1);
+                let mut f = lines.data(&what)?;
+                let tag = f.usize("node tag")?;
+                let p = xyz(&mut f)?;
+                f.end("`tag x y z`")?;
+                nodes.add(tag, p, &f)?;
+            }
+        }
+        Version::V41 => {
+            let mut h = lines.data("`numEntityBlocks numNodes minNodeTag maxNodeTag`")?;
+            let blocks = h.usize("numEntityBlocks")?;
+            let count = h.usize("numNodes")?;
+            for _ in 0..blocks {
+                let mut b = lines.data("`entityDim entityTag parametric numNodesInBlock`")?;
+                let dim = b.usize("entityDim")?;
+                b.i64("entityTag")?;
+                let parametric = b.usize("parametric (0 or 1)")?;
+                let in_block = b.usize("numNodesInBlock")?;
+                if dim > 3 || parametric > 1 {
+                    return Err(b.error(format!(
+                        "expected entityDim <= 3 and parametric 0 or 1, found `{}`",
+                        b.text
+                    )));
+                }
+                let mut tags = Vec::new();
+                for _ in 0..in_block {
+                    let mut f = lines.data("a node tag")?;
+                    tags.push(f.usize("node tag")?);
+                    f.end("the node tag")?;
+                }
+                for tag in tags {
+                    let mut f = lines.data("node coordinates `x y z`")?;
+                    let p = xyz(&mut f)?;
+                    f.skip(parametric * dim, "parametric coordinates")?;
+                    f.end("the node coordinates")?;
+                    nodes.add(tag, p, &f)?;
+                }
+            }
+            if nodes.positions.len() != count {
+                return Err(lines.error(
+                    lines.last,
+                    format!(
+                        "the header declares {count} nodes but the blocks hold {}",
+                        nodes.positions.len()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(nodes)
+}
+
+/// Name of a Gmsh volume element type other than the linear tet, or `None` for points,
+/// lines, triangles and quads (which are skipped).
+fn rejected_volume_type(kind: usize) -> Option<&'static str> {
+    Some(match kind {
+        5 => "8-node hexahedron",
+        6 => "6-node prism",
+        7 => "5-node pyramid",
+        11 => "10-node (quadratic) tetrahedron",
+        12 => "27-node hexahedron",
+        13 => "18-node prism",
+        14 => "14-node pyramid",
+        17 => "20-node hexahedron",
+        18 => "15-node prism",
+        19 => "13-node pyramid",
+        29 => "20-node tetrahedron",
+        30 => "35-node tetrahedron",
+        31 => "56-node tetrahedron",
+        92 => "64-node hexahedron",
+        93 => "125-node hexahedron",
+        _ => return None,
+    })
+}
+
+/// Gmsh types of points, lines, triangles and quads (first to third order, complete and
+/// serendipity), which carry no volume and are skipped.
+fn is_lower_dimensional(kind: usize) -> bool {
+    matches!(kind, 1..=3 | 8..=10 | 15 | 16 | 20..=28 | 36 | 37)
+}
+
+fn reject(f: &Fields, kind: usize) -> MeshError {
+    let name = rejected_volume_type(kind).map_or_else(
+        || format!("unknown element type {kind}"),
+        |n| format!("element type {kind} ({n})"),
+    );
+    f.error(format!(
+        "{name} is not supported: isochor reads linear tetrahedra (type 4) only"
+    ))
+}
+
+fn read_tet(f: &mut Fields, nodes: &Nodes, tets: &mut Tets) -> Result<(), MeshError> {
+    let mut tet = [0; 4];
+    for (a, slot) in tet.iter_mut().enumerate() {
+        let tag = f.usize(&format!("node {} of the tetrahedron", a + 1))?;
+        *slot = nodes.get(tag, f)?;
+    }
+    f.end("the 4 nodes of the tetrahedron")?;
+    tets.tets.push(tet);
+    tets.lines.push(f.line);
+    Ok(())
+}
+
+fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<Tets, MeshError> {
+    let mut tets = Tets::default();
+    match version {
+        Version::V2 => {
+            let count = lines
+                .data("the number of elements")?
+                .usize("the number of elements")?;
+            for i in 0..count {
+                let what = format!(
+                    "element {} of {count} (`tag type ntags tags... nodes...`)",
+                    i + 1
+                );
+                let mut f = lines.data(&what)?;
+                f.usize("element tag")?;
+                let kind = f.usize("element type")?;
+                if kind == TET {
+                    let ntags = f.usize("number of tags")?;
+                    f.skip(ntags, "an element tag")?;
+                    read_tet(&mut f, nodes, &mut tets)?;
+                } else if !is_lower_dimensional(kind) {
+                    return Err(reject(&f, kind));
+                }
+            }
+        }
+        Version::V41 => {
+            let mut h = lines.data("`numEntityBlocks numElements minElementTag maxElementTag`")?;
+            let blocks = h.usize("numEntityBlocks")?;
+            let count = h.usize("numElements")?;
+            let mut seen = 0usize;
+            for _ in 0..blocks {
+                let mut b = lines.data("`entityDim entityTag elementType numElementsInBlock`")?;
+                let dim = b.usize("entityDim")?;
+                b.i64("entityTag")?;
+                let kind = b.usize("elementType")?;
+                let in_block = b.usize("numElementsInBlock")?;
+                if dim == 3 && kind != TET {
+                    return Err(reject(&b, kind));
+                }
+                for _ in 0..in_block {
+                    let mut f = lines.data("an element line `tag node...`")?;
+                    if dim == 3 {
+                        f.usize("element tag")?;
+                        read_tet(&mut f, nodes, &mut tets)?;
+                    }
+                }
+                seen = seen.saturating_add(in_block);
+            }
+            if seen != count {
+                return Err(lines.error(
+                    lines.last,
+                    format!("the header declares {count} elements but the blocks hold {seen}"),
+                ));
+            }
+        }
+    }
+    Ok(tets)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> (usize, String) {
+        match parse(Path::new("t.msh"), text) {
+            Err(MeshError::Parse {
+                path,
+                line,
+                message,
+            }) => {
+                assert_eq!(path, Path::new("t.msh"));
+                (line, message)
+            }
+            other => panic!("expected a parse error, got {other:?}"),
+        }
+    }
+
+    const V2: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n9 5 5 5\n$EndNodes\n$Elements\n2\n1 2 2 1 1 1 2 3\n2 4 2 1 1 1 2 3 4\n$EndElements\n";
+
+    #[test]
+    fn minimal_v2_file() {
+        let mesh = parse(Path::new("t.msh"), V2).unwrap();
+        assert_eq!(mesh.num_vertices(), 4, "the unused node 9 is dropped");
+        assert_eq!(mesh.num_tets(), 1);
+        assert!((mesh.rest_volume() - 1.0 / 6.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn malformed_v2_files_name_the_line() {
+        let (line, m) = err(&V2.replace("2.2 0 8", "2.2 1 8"));
+        assert_eq!(line, 2);
+        assert!(m.contains("binary"), "{m}");
+        let (line, m) = err(&V2.replace("3 0 1 0", "3 0 nan 0"));
+        assert_eq!(line, 8);
+        assert!(m.contains("finite y coordinate"), "{m}");
+        let (line, m) = err(&V2.replace("1 1 2 3 4", "1 1 2 3 7"));
+        assert_eq!(line, 15);
+        assert!(m.contains("node tag 7 is not defined"), "{m}");
+        let (line, m) = err(&V2.replace("2 4 2 1 1", "2 5 2 1 1"));
+        assert_eq!(line, 15);
+        assert!(m.contains("8-node hexahedron"), "{m}");
+        let (line, m) = err(&V2.replace("2 4 2 1 1", "2 11 2 1 1"));
+        assert_eq!(line, 15);
+        assert!(m.contains("quadratic"), "{m}");
+        let (line, m) = err(&V2.replace("$Elements\n2\n", "$Elements\n3\n"));
+        assert_eq!(line, 16);
+        assert!(m.contains("element 3 of 3"), "{m}");
+        let (line, m) = err(&V2[..V2.find("4 0 0 1").unwrap()]);
+        assert_eq!(line, 9);
+        assert!(
+            m.contains("unexpected end of file") && m.contains("node 4 of 5"),
+            "{m}"
+        );
+        let (line, m) = err(&V2.replace("1 1 2 3 4", "1 1 2 3 3"));
+        assert_eq!(line, 15);
+        assert!(m.contains("more than once"), "{m}");
+        let (_, m) = err(&V2.replace("5\n1 0 0 0", "99999999999999999999999\n1 0 0 0"));
+        assert!(m.contains("number of nodes"), "{m}");
+        let (line, m) = err("hello\n");
+        assert_eq!(line, 1);
+        assert!(m.contains("section header"), "{m}");
+        let (_, m) = err("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n");
+        assert!(m.contains("version 3"), "{m}");
+    }
+
+    const V41: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n2 4 1 4\n0 1 0 1\n1\n0 0 0\n3 1 0 3\n2\n3\n4\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n2 2 1 2\n2 1 2 1\n1 1 2 3\n3 1 4 1\n2 1 2 3 4\n$EndElements\n";
+
+    #[test]
+    fn minimal_v41_file_and_its_errors() {
+        let mesh = parse(Path::new("t.msh"), V41).unwrap();
+        assert_eq!((mesh.num_vertices(), mesh.num_tets()), (4, 1));
+        let (line, m) = err(&V41.replace("3 1 4 1", "3 1 5 1"));
+        assert_eq!(line, 21);
+        assert!(m.contains("element type 5"), "{m}");
+        let (line, m) = err(&V41.replace("2 2 1 2\n", "2 3 1 2\n"));
+        assert_eq!(line, 22);
+        assert!(m.contains("declares 3 elements"), "{m}");
+        let (line, m) = err(&V41.replace("0 0 1\n$EndNodes", "0 0 1\n7 7 7\n$EndNodes"));
+        assert_eq!(line, 16);
+        assert!(m.contains("expected $EndNodes, found `7 7 7`"), "{m}");
+        let (line, m) = err(&V41.replace("2 4 1 4\n", "2 5 1 4\n"));
+        assert_eq!(line, 15);
+        assert!(m.contains("declares 5 nodes"), "{m}");
+        let (line, m) = err(&V41.replace("3 1 0 3\n", "3 1 0 4\n"));
+        assert_eq!(line, 13);
+        assert!(m.contains("extra field"), "{m}");
+    }
+}

@@ -1,0 +1,234 @@
+//! The `isochor` command line (contract: DESIGN.md section 4).
+//!
+//! ```text
+//! isochor list                                   # built-in scenes, one per line
+//! isochor run SCENE [--set KEY=VALUE]... [--out DIR] [--json] [--variant NAME]
+//! isochor compare SCENE --methods A,B,... [--set KEY=VALUE]... [--sweep KEY=V1,V2,...] [--out DIR] [--json]
+//! isochor show SCENE [--set KEY=VALUE]... [--variant NAME]   # the scene as TOML, to copy and edit
+//! ```
+//!
+//! Exit status: 0 on success, 1 on an error (bad scene, key, value or file; nothing is
+//! written), 2 on a command-line usage error, 3 when `run` completed but a step did not
+//! converge (its outputs and JSON are still written, with `"converged": false`).
+
+use crate::compare::{compare, describe_output, parse_methods, CompareRequest};
+use crate::overrides::Override;
+use crate::{builtin, run_named, RunResult, SceneError, SceneSource};
+use clap::{Parser, Subcommand};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Exit status of a run whose solver did not converge.
+pub const EXIT_NOT_CONVERGED: i32 = 3;
+
+/// Nearly incompressible soft solids on linear tets without locking.
+#[derive(Debug, Parser)]
+#[command(name = "isochor", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List the built-in scenes, one per line.
+    List {
+        /// Also print each scene's description and variants.
+        #[arg(long)]
+        long: bool,
+    },
+    /// Run a scene (a built-in name or a TOML file).
+    Run {
+        /// Built-in scene name or path to a TOML scene file.
+        scene: String,
+        /// Override a parameter: a flat name (nu, E, mu, rho, res, steps, method, mesh, ...)
+        /// or a dotted key (material.nu, stepping.steps, ...).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Apply one of the scene's named variants first.
+        #[arg(long, value_name = "NAME")]
+        variant: Option<String>,
+        /// Write VTU frames, a .pvd, summary.json, CSV logs and PNG plots to this folder.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print exactly one JSON object on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Run a scene with several methods (or variants) and print a table.
+    Compare {
+        /// Built-in scene name or path to a TOML scene file.
+        scene: String,
+        /// Methods to compare, comma-separated (e.g. standard,mixed-p1,zonal).
+        #[arg(long, value_name = "A,B,...")]
+        methods: Option<String>,
+        /// Variants of the scene to compare, comma-separated (default without --methods: all).
+        #[arg(long, value_name = "A,B,...")]
+        variants: Option<String>,
+        /// Override a parameter in every run.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Repeat over the values of a parameter, e.g. nu=0.49,0.499,0.4999.
+        #[arg(long, value_name = "KEY=V1,V2,...")]
+        sweep: Option<String>,
+        /// Write compare.csv, compare.md and compare.json to this folder.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print exactly one JSON object on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print a scene as TOML (after a variant and overrides), to copy, edit and run by path.
+    Show {
+        /// Built-in scene name or path to a TOML scene file.
+        scene: String,
+        /// Override a parameter.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Apply one of the scene's named variants first.
+        #[arg(long, value_name = "NAME")]
+        variant: Option<String>,
+    },
+}
+
+fn parse_overrides(set: &[String]) -> Result<Vec<Override>, SceneError> {
+    set.iter().map(|s| Override::parse(s)).collect()
+}
+
+/// Runs a parsed command line, writing to `stdout`; returns the exit status.
+pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
+    let io = SceneError::Stdout;
+    match cli.command {
+        Command::List { long } => {
+            for name in builtin::names() {
+                if long {
+                    let scene = SceneSource::resolve(name)?.load(None, &[])?;
+                    writeln!(stdout, "{name}\t{}", scene.description).map_err(io)?;
+                    if !scene.variants.is_empty() {
+                        let v: Vec<&str> = scene.variants.keys().map(String::as_str).collect();
+                        writeln!(stdout, "\tvariants: {}", v.join(", ")).map_err(io)?;
+                    }
+                } else {
+                    writeln!(stdout, "{name}").map_err(io)?;
+                }
+            }
+            Ok(0)
+        }
+        Command::Show {
+            scene,
+            set,
+            variant,
+        } => {
+            let overrides = parse_overrides(&set)?;
+            let scene = SceneSource::resolve(&scene)?.load(variant.as_deref(), &overrides)?;
+            write!(stdout, "{}", scene.to_toml_string()).map_err(io)?;
+            Ok(0)
+        }
+        Command::Run {
+            scene,
+            set,
+            variant,
+            out,
+            json,
+        } => {
+            let overrides = parse_overrides(&set)?;
+            let (result, written) = run_named(
+                &scene,
+                variant.as_deref(),
+                &overrides,
+                out.as_deref(),
+                !json,
+            )?;
+            if json {
+                let text = serde_json::to_string(&result.to_json())
+                    .map_err(|e| SceneError::Output(e.to_string()))?;
+                writeln!(stdout, "{text}").map_err(io)?;
+            } else {
+                write!(stdout, "{}", human_summary(&result)).map_err(io)?;
+                if let Some(dir) = written {
+                    writeln!(stdout, "outputs: {}", dir.display()).map_err(io)?;
+                }
+            }
+            Ok(if result.converged {
+                0
+            } else {
+                EXIT_NOT_CONVERGED
+            })
+        }
+        Command::Compare {
+            scene,
+            methods,
+            variants,
+            set,
+            sweep,
+            out,
+            json,
+        } => {
+            let request = CompareRequest {
+                scene,
+                methods: methods
+                    .as_deref()
+                    .map(parse_methods)
+                    .transpose()?
+                    .unwrap_or_default(),
+                variants: variants
+                    .map(|v| {
+                        v.split(',')
+                            .map(|s| s.trim().to_string())
+                            .filter(|s| !s.is_empty())
+                            .collect()
+                    })
+                    .unwrap_or_default(),
+                overrides: parse_overrides(&set)?,
+                sweep,
+                out,
+                progress: !json,
+            };
+            let (comparison, written) = compare(&request)?;
+            if json {
+                let text = serde_json::to_string(&comparison.to_json())
+                    .map_err(|e| SceneError::Output(e.to_string()))?;
+                writeln!(stdout, "{text}").map_err(io)?;
+            } else {
+                write!(stdout, "{}", comparison.to_text()).map_err(io)?;
+                if let Some(dir) = written {
+                    writeln!(stdout, "{}", describe_output(&dir)).map_err(io)?;
+                }
+            }
+            Ok(0)
+        }
+    }
+}
+
+/// A run's summary for people.
+pub fn human_summary(r: &RunResult) -> String {
+    let mut s = String::new();
+    let variant = r
+        .variant
+        .as_deref()
+        .map(|v| format!(" [{v}]"))
+        .unwrap_or_default();
+    s += &format!("scene              {}{variant}\n", r.scene);
+    s += &format!("method             {} (nu = {})\n", r.method, r.nu);
+    s += &format!(
+        "mesh               {} vertices, {} tets, {} unknowns\n",
+        r.vertices, r.tets, r.dofs
+    );
+    s += &format!("steps              {}/{}\n", r.steps, r.steps_requested);
+    s += &format!("newton iterations  {}\n", r.newton_iterations);
+    s += &format!(
+        "converged          {}\n",
+        if r.converged { "yes" } else { "no" }
+    );
+    if let Some(e) = &r.error {
+        s += &format!("stopped at step {}: {e}\n", r.failed_step.unwrap_or(0));
+    }
+    s += &format!("wall time          {:.3} s\n", r.wall_time_s);
+    s += &format!("volume change      {:+.4e} %\n", 100.0 * r.volume_change);
+    s += &format!("max inverted tets  {}\n", r.max_inverted_tets);
+    for (name, value) in &r.probes {
+        s += &format!("{name:<18} {value:.6e}\n");
+    }
+    s
+}

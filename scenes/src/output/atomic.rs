@@ -1,0 +1,147 @@
+//! An output folder that appears whole or not at all.
+
+use crate::SceneError;
+use std::path::{Path, PathBuf};
+
+/// Files that mark a folder as an isochor output folder (so it may be replaced).
+const MARKERS: [&str; 2] = ["summary.json", "compare.csv"];
+
+/// A temporary folder `.NAME.tmp-PID` next to the destination; [`OutputDir::commit`] renames
+/// it to the destination, and dropping it uncommitted removes it.
+#[derive(Debug)]
+pub struct OutputDir {
+    temp: PathBuf,
+    dest: PathBuf,
+    committed: bool,
+}
+
+impl OutputDir {
+    /// Prepares an output folder for `dest`. Fails at once (before any work) if `dest` is a
+    /// file, or an existing non-empty folder that is not an earlier isochor output.
+    pub fn create(dest: &Path) -> Result<OutputDir, SceneError> {
+        check_replaceable(dest)?;
+        let name = dest
+            .file_name()
+            .ok_or_else(|| SceneError::Output(format!("{} is not a folder name", dest.display())))?
+            .to_string_lossy()
+            .into_owned();
+        let parent = match dest.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent).map_err(|e| SceneError::io(&parent, e))?;
+        let temp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+        if temp.exists() {
+            std::fs::remove_dir_all(&temp).map_err(|e| SceneError::io(&temp, e))?;
+        }
+        std::fs::create_dir(&temp).map_err(|e| SceneError::io(&temp, e))?;
+        Ok(OutputDir {
+            temp,
+            dest: dest.to_path_buf(),
+            committed: false,
+        })
+    }
+
+    /// The temporary folder to write into.
+    pub fn path(&self) -> &Path {
+        &self.temp
+    }
+
+    /// The final destination.
+    pub fn destination(&self) -> &Path {
+        &self.dest
+    }
+
+    /// Moves the finished outputs to the destination (replacing an earlier output there).
+    pub fn commit(mut self) -> Result<PathBuf, SceneError> {
+        check_replaceable(&self.dest)?;
+        let old = self.temp.with_extension("old");
+        if self.dest.exists() {
+            std::fs::rename(&self.dest, &old).map_err(|e| SceneError::io(&self.dest, e))?;
+        }
+        std::fs::rename(&self.temp, &self.dest).map_err(|e| SceneError::io(&self.dest, e))?;
+        self.committed = true;
+        if old.exists() {
+            std::fs::remove_dir_all(&old).map_err(|e| SceneError::io(&old, e))?;
+        }
+        Ok(self.dest.clone())
+    }
+}
+
+impl Drop for OutputDir {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.temp);
+        }
+    }
+}
+
+fn check_replaceable(dest: &Path) -> Result<(), SceneError> {
+    if !dest.exists() {
+        return Ok(());
+    }
+    if !dest.is_dir() {
+        return Err(SceneError::Output(format!(
+            "{} exists and is not a folder",
+            dest.display()
+        )));
+    }
+    let mut entries = std::fs::read_dir(dest).map_err(|e| SceneError::io(dest, e))?;
+    let empty = entries.next().is_none();
+    if empty || MARKERS.iter().any(|m| dest.join(m).is_file()) {
+        Ok(())
+    } else {
+        Err(SceneError::Output(format!(
+            "{} exists and is not an isochor output folder (no {}); choose another --out",
+            dest.display(),
+            MARKERS.join(" or ")
+        )))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("isochor-atomic-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn uncommitted_output_leaves_nothing() {
+        let root = scratch("drop");
+        let dest = root.join("out");
+        {
+            let out = OutputDir::create(&dest).unwrap();
+            std::fs::write(out.path().join("a.txt"), "x").unwrap();
+        }
+        assert!(!dest.exists());
+        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 0);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn commit_replaces_an_earlier_output_but_not_a_foreign_folder() {
+        let root = scratch("commit");
+        let dest = root.join("out");
+        for round in 0..2 {
+            let out = OutputDir::create(&dest).unwrap();
+            std::fs::write(out.path().join("summary.json"), format!("{round}")).unwrap();
+            out.commit().unwrap();
+            assert_eq!(
+                std::fs::read_to_string(dest.join("summary.json")).unwrap(),
+                format!("{round}")
+            );
+        }
+        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 1);
+        let foreign = root.join("mine");
+        std::fs::create_dir(&foreign).unwrap();
+        std::fs::write(foreign.join("thesis.tex"), "x").unwrap();
+        assert!(OutputDir::create(&foreign).is_err());
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+}

@@ -1,0 +1,56 @@
+//! CSV logs: every Newton iteration, and every step.
+
+use crate::result::StepRecord;
+use crate::SceneError;
+use std::fmt::Write;
+use std::path::Path;
+
+/// `iterations.csv`: one row per Newton iteration of every step (the final residuals of a
+/// step have an empty `step_length`).
+pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
+    let mut out = String::from(
+        "step,t,iteration,force_residual,constraint_residual,step_length,backtracks\n",
+    );
+    for s in history {
+        for (i, (f, c)) in s
+            .force_residuals
+            .iter()
+            .zip(&s.constraint_residuals)
+            .enumerate()
+        {
+            let (len, back) = match (s.step_lengths.get(i), s.backtracks.get(i)) {
+                (Some(l), Some(b)) => (format!("{l:e}"), b.to_string()),
+                _ => (String::new(), String::new()),
+            };
+            let _ = writeln!(out, "{},{:e},{i},{f:e},{c:e},{len},{back}", s.step, s.t);
+        }
+    }
+    super::write_file(path, out.as_bytes())
+}
+
+/// `steps.csv`: one row per accepted step or frame.
+pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
+    let mut out = String::from(
+        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,wall_time_s\n",
+    );
+    for s in history {
+        let _ = writeln!(
+            out,
+            "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e}",
+            s.step,
+            s.t,
+            s.newton_iterations,
+            s.converged,
+            s.force_residuals.last().copied().unwrap_or(0.0),
+            s.constraint_residuals.last().copied().unwrap_or(0.0),
+            s.volume_change,
+            s.inverted_tets,
+            s.kinetic_energy,
+            s.elastic_energy,
+            s.external_energy,
+            s.kinetic_energy + s.elastic_energy + s.external_energy,
+            s.wall_time_s
+        );
+    }
+    super::write_file(path, out.as_bytes())
+}

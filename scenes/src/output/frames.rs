@@ -1,0 +1,77 @@
+//! VTU frames (displacement, pressure, J, zone) and their `.pvd` collection, through the
+//! mesh crate's writers.
+
+use crate::SceneError;
+use isochor_mesh::io::{write_pvd, write_vtu, Field};
+use isochor_mesh::{TetMesh, Vec3};
+use std::path::{Path, PathBuf};
+
+/// Writes every `every`-th frame (and always the last) into a folder.
+#[derive(Debug)]
+pub struct FrameWriter {
+    dir: PathBuf,
+    stem: String,
+    every: usize,
+    zone_ids: Option<Vec<i32>>,
+    entries: Vec<(f64, String)>,
+}
+
+impl FrameWriter {
+    /// A writer into `dir` naming files `STEM_00012.vtu` and `STEM.pvd`; `zone_ids` is the
+    /// first zone of each tet (or `None` without zones).
+    pub fn new(dir: &Path, stem: &str, every: usize, zone_ids: Option<Vec<i32>>) -> Self {
+        FrameWriter {
+            dir: dir.to_path_buf(),
+            stem: stem.to_string(),
+            every: every.max(1),
+            zone_ids,
+            entries: Vec::new(),
+        }
+    }
+
+    /// Whether frame `index` of `total` is written.
+    pub fn wants(&self, index: usize, total: usize) -> bool {
+        index % self.every == 0 || index == total
+    }
+
+    /// Writes frame `index` at time or load `t` (0 is the rest state).
+    pub fn write(
+        &mut self,
+        mesh: &TetMesh,
+        index: usize,
+        t: f64,
+        positions: &[Vec3],
+        tet_pressures: &[f64],
+    ) -> Result<(), SceneError> {
+        let rest = mesh.positions();
+        let displacement: Vec<Vec3> = positions.iter().zip(rest).map(|(x, r)| x - r).collect();
+        let j: Vec<f64> = (0..mesh.num_tets())
+            .map(|e| mesh.volume_at(e, positions) / mesh.rest_volumes()[e])
+            .collect();
+        let pressure = if tet_pressures.len() == mesh.num_tets() {
+            tet_pressures.to_vec()
+        } else {
+            vec![0.0; mesh.num_tets()]
+        };
+        let mut cells = vec![Field::scalar("pressure", pressure), Field::scalar("J", j)];
+        if let Some(z) = &self.zone_ids {
+            cells.push(Field::int("zone", z.clone()));
+        }
+        let name = format!("{}_{index:05}.vtu", self.stem);
+        write_vtu(
+            self.dir.join(&name),
+            positions,
+            mesh.tets(),
+            &[Field::vector("displacement", displacement)],
+            &cells,
+        )?;
+        self.entries.push((t, name));
+        Ok(())
+    }
+
+    /// Writes the `.pvd` collection of the frames written so far.
+    pub fn finish(&self) -> Result<(), SceneError> {
+        write_pvd(self.dir.join(format!("{}.pvd", self.stem)), &self.entries)?;
+        Ok(())
+    }
+}

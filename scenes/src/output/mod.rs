@@ -1,0 +1,40 @@
+//! What `--out DIR` writes: VTU frames and a `.pvd` collection, `summary.json`, CSV logs and
+//! PNG plots. Everything goes to a temporary folder next to `DIR` that is renamed to `DIR`
+//! only when the run's outputs are complete, so an error leaves no partial output.
+
+mod atomic;
+mod csv;
+mod frames;
+mod plots;
+
+pub use atomic::OutputDir;
+pub use csv::{write_iterations_csv, write_steps_csv};
+pub use frames::FrameWriter;
+pub use plots::{plot_energy, plot_residuals};
+
+use crate::result::RunResult;
+use crate::SceneError;
+use std::path::Path;
+
+/// Writes `summary.json`, the CSV logs and (if `plots`) the PNG plots of a finished run into
+/// `dir` (the temporary output folder).
+pub fn write_run_outputs(dir: &Path, result: &RunResult, plots: bool) -> Result<(), SceneError> {
+    let json = serde_json::to_string_pretty(&result.to_json())
+        .map_err(|e| SceneError::Output(e.to_string()))?;
+    write_file(&dir.join("summary.json"), json.as_bytes())?;
+    write_iterations_csv(&dir.join("iterations.csv"), &result.history)?;
+    write_steps_csv(&dir.join("steps.csv"), &result.history)?;
+    if plots {
+        let title = format!("{} ({})", result.scene, result.method);
+        plot_residuals(&dir.join("residuals.png"), &title, &result.history)?;
+        if result.dynamic {
+            plot_energy(&dir.join("energy.png"), &title, &result.history)?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes a whole file.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
+    std::fs::write(path, bytes).map_err(|e| SceneError::io(path, e))
+}

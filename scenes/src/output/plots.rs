@@ -1,0 +1,234 @@
+//! PNG plots drawn with `plotters` on its pure-Rust bitmap backend; text uses DejaVu Sans
+//! embedded by the `dejavu` crate (no system font libraries needed).
+//!
+//! - `residuals.png`: the Newton force (and constraint) residual of every iteration across
+//!   the steps, on a log scale (like Fig. 7 of Francu et al. 2021).
+//! - `energy.png`: kinetic, elastic, external and total energy against time (like Fig. 8 of
+//!   Sheen et al. 2021).
+
+use crate::result::StepRecord;
+use crate::SceneError;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+use std::path::Path;
+use std::sync::Once;
+
+const SIZE: (u32, u32) = (1000, 600);
+
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The embedded font is valid; if registration failed anyway, text would be missing.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            dejavu::sans::regular(),
+        );
+    });
+}
+
+fn plot_error(path: &Path, e: impl std::fmt::Display) -> SceneError {
+    SceneError::Output(format!("{}: {e}", path.display()))
+}
+
+/// Padded `(lo, hi)` of finite values, never empty.
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo.partial_cmp(&hi).is_none_or(|o| o.is_gt()) {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo {
+        0.05 * (hi - lo)
+    } else {
+        lo.abs().max(1.0) * 0.05
+    };
+    (lo - pad, hi + pad)
+}
+
+/// Newton residuals per iteration across steps, log scale.
+pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Result<(), SceneError> {
+    register_font();
+    let positive = |v: &f64| v.is_finite() && *v > 0.0;
+    let all = history
+        .iter()
+        .flat_map(|s| s.force_residuals.iter().chain(&s.constraint_residuals))
+        .copied()
+        .filter(positive);
+    let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    let (lo, hi) = if lo <= hi {
+        (lo / 2.0, hi * 2.0)
+    } else {
+        (1e-12, 1.0)
+    };
+    let total: usize = history
+        .iter()
+        .map(|s| s.force_residuals.len())
+        .sum::<usize>()
+        .max(2);
+    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("Newton residuals: {title}"), ("sans-serif", 24))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d(0f64..(total - 1) as f64, (lo..hi).log_scale())
+        .map_err(|e| plot_error(path, e))?;
+    chart
+        .configure_mesh()
+        .x_desc("iteration (all steps)")
+        .y_desc("residual")
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .draw()
+        .map_err(|e| plot_error(path, e))?;
+    let mut offset = 0usize;
+    let mut labelled = [false; 2];
+    for s in history {
+        for (k, (series, color)) in [(&s.force_residuals, BLUE), (&s.constraint_residuals, RED)]
+            .into_iter()
+            .enumerate()
+        {
+            let points: Vec<(f64, f64)> = series
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| positive(v))
+                .map(|(i, v)| ((offset + i) as f64, *v))
+                .collect();
+            if points.is_empty() {
+                continue;
+            }
+            let drawn = chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .map_err(|e| plot_error(path, e))?;
+            if !labelled[k] {
+                labelled[k] = true;
+                let label = if k == 0 {
+                    "force residual"
+                } else {
+                    "constraint residual"
+                };
+                drawn.label(label).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            }
+            chart
+                .draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(|e| plot_error(path, e))?;
+        }
+        offset += s.force_residuals.len();
+    }
+    if labelled.iter().any(|&l| l) {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_error(path, e))?;
+    }
+    root.present().map_err(|e| plot_error(path, e))?;
+    Ok(())
+}
+
+/// Energies against time.
+pub fn plot_energy(path: &Path, title: &str, history: &[StepRecord]) -> Result<(), SceneError> {
+    register_font();
+    type Pick = fn(&StepRecord) -> f64;
+    let series: [(&str, RGBColor, Pick); 4] = [
+        ("kinetic", RED, |s| s.kinetic_energy),
+        ("elastic", BLUE, |s| s.elastic_energy),
+        ("external", GREEN, |s| s.external_energy),
+        ("total", BLACK, |s| {
+            s.kinetic_energy + s.elastic_energy + s.external_energy
+        }),
+    ];
+    let (t0, t1) = range(history.iter().map(|s| s.t));
+    let (lo, hi) = range(
+        history
+            .iter()
+            .flat_map(|s| series.iter().map(move |(_, _, f)| f(s))),
+    );
+    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("Energy: {title}"), ("sans-serif", 24))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(90)
+        .build_cartesian_2d(t0..t1, lo..hi)
+        .map_err(|e| plot_error(path, e))?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc("energy (J)")
+        .y_label_formatter(&|v| format!("{v:.3e}"))
+        .draw()
+        .map_err(|e| plot_error(path, e))?;
+    for (name, color, f) in series {
+        chart
+            .draw_series(LineSeries::new(
+                history.iter().map(|s| (s.t, f(s))),
+                color.stroke_width(2),
+            ))
+            .map_err(|e| plot_error(path, e))?
+            .label(name)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| plot_error(path, e))?;
+    root.present().map_err(|e| plot_error(path, e))?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn record(step: usize, residuals: &[f64]) -> StepRecord {
+        StepRecord {
+            step,
+            t: step as f64 * 0.1,
+            newton_iterations: residuals.len() - 1,
+            converged: true,
+            force_residuals: residuals.to_vec(),
+            constraint_residuals: residuals.iter().map(|r| r * 0.1).collect(),
+            step_lengths: vec![1.0; residuals.len() - 1],
+            backtracks: vec![0; residuals.len() - 1],
+            volume_change: 0.0,
+            inverted_tets: 0,
+            kinetic_energy: (step as f64).sin().abs(),
+            elastic_energy: 1.0,
+            external_energy: -0.5 * step as f64,
+            wall_time_s: 0.0,
+        }
+    }
+
+    #[test]
+    fn plots_are_png_files() {
+        let dir = std::env::temp_dir().join(format!("isochor-plots-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let history: Vec<StepRecord> = (1..=4)
+            .map(|s| record(s, &[1.0, 1e-3, 1e-8, 1e-13]))
+            .collect();
+        plot_residuals(&dir.join("r.png"), "test", &history).unwrap();
+        plot_energy(&dir.join("e.png"), "test", &history).unwrap();
+        for f in ["r.png", "e.png"] {
+            let bytes = std::fs::read(dir.join(f)).unwrap();
+            assert_eq!(&bytes[1..4], b"PNG", "{f}");
+        }
+        // Degenerate input (no iterations, zero residuals) still draws.
+        plot_residuals(&dir.join("empty.png"), "empty", &[record(1, &[0.0])]).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

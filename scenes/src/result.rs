@@ -1,0 +1,94 @@
+//! The result of one run, as `--json` prints it and `summary.json` stores it. The keys of
+//! DESIGN.md section 4 are fields of [`RunResult`]; everything else is extra.
+
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// One accepted step or frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StepRecord {
+    /// Step or frame index, from 1.
+    pub step: usize,
+    /// Load parameter (quasi-static) or time in seconds (dynamics).
+    pub t: f64,
+    /// Newton (or dual) iterations of the step.
+    pub newton_iterations: usize,
+    /// Whether the step met both tolerances.
+    pub converged: bool,
+    /// Force residual per iteration (before each iteration), then the final one.
+    pub force_residuals: Vec<f64>,
+    /// Constraint residual per iteration, then the final one.
+    pub constraint_residuals: Vec<f64>,
+    /// Accepted step length per iteration.
+    pub step_lengths: Vec<f64>,
+    /// Line-search backtracks per iteration.
+    pub backtracks: Vec<usize>,
+    /// Whole-body volume change (deformed/rest - 1) of the accepted state.
+    pub volume_change: f64,
+    /// Inverted tets in the accepted state.
+    pub inverted_tets: usize,
+    /// Kinetic energy.
+    pub kinetic_energy: f64,
+    /// Elastic energy.
+    pub elastic_energy: f64,
+    /// Potential of the external loads.
+    pub external_energy: f64,
+    /// Wall time of the step in seconds.
+    pub wall_time_s: f64,
+}
+
+/// The summary of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunResult {
+    /// Scene name.
+    pub scene: String,
+    /// The variant run, if any.
+    pub variant: Option<String>,
+    /// Method name.
+    pub method: String,
+    /// Poisson's ratio.
+    pub nu: f64,
+    /// Mesh vertices.
+    pub vertices: usize,
+    /// Mesh tets.
+    pub tets: usize,
+    /// Free displacement DOFs plus pressure/multiplier unknowns.
+    pub dofs: usize,
+    /// Steps or frames completed (accepted).
+    pub steps: usize,
+    /// Steps or frames asked for.
+    pub steps_requested: usize,
+    /// Newton (or dual) iterations over all steps.
+    pub newton_iterations: usize,
+    /// Whether every step converged and the run completed.
+    pub converged: bool,
+    /// Wall time of the run in seconds.
+    pub wall_time_s: f64,
+    /// Whole-body deformed/rest volume minus one, in the last accepted state.
+    pub volume_change: f64,
+    /// Named probe results on the last accepted state.
+    pub probes: BTreeMap<String, f64>,
+    /// The most inverted tets in any accepted state.
+    pub max_inverted_tets: usize,
+    /// Final constraint residual.
+    pub constraint_residual: f64,
+    /// Why the run stopped early, if it did.
+    pub error: Option<String>,
+    /// The step that failed, if any.
+    pub failed_step: Option<usize>,
+    /// The `--set` overrides applied, as `KEY=VALUE`.
+    pub overrides: Vec<String>,
+    /// Per-step records (left out of `--json`; written to the CSV logs).
+    #[serde(skip)]
+    pub history: Vec<StepRecord>,
+    /// Whether the scene is dynamic.
+    #[serde(skip)]
+    pub dynamic: bool,
+}
+
+impl RunResult {
+    /// The JSON object of the command-line contract (non-finite numbers become `null`).
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::to_value(self).expect("a run result always serializes")
+    }
+}

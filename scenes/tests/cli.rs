@@ -1,0 +1,306 @@
+//! The `isochor` binary end to end: the command-line contract of DESIGN.md section 4.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn isochor(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_isochor"))
+        .args(args)
+        .output()
+        .expect("the isochor binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("isochor-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn assert_failed_cleanly(o: &Output, out: &Path, needles: &[&str]) {
+    assert_eq!(o.status.code(), Some(1), "stderr: {}", stderr(o));
+    assert!(
+        stdout(o).is_empty(),
+        "stdout must stay empty: {}",
+        stdout(o)
+    );
+    let err = stderr(o);
+    for n in needles {
+        assert!(err.contains(n), "stderr lacks {n:?}: {err}");
+    }
+    assert!(
+        !out.exists(),
+        "{} must not exist after an error",
+        out.display()
+    );
+    let leftovers: Vec<_> = std::fs::read_dir(out.parent().unwrap()).unwrap().collect();
+    assert!(leftovers.is_empty(), "partial output left: {leftovers:?}");
+}
+
+#[test]
+fn list_prints_every_builtin_scene_one_per_line() {
+    let o = isochor(&["list"]);
+    assert!(o.status.success());
+    let lines: Vec<String> = stdout(&o).lines().map(str::to_string).collect();
+    let names: Vec<String> = isochor_scenes::builtin::names()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(lines, names);
+    for expected in [
+        "cantilever",
+        "compressed-block",
+        "inflated-tube",
+        "two-tets",
+        "zoning-beam",
+    ] {
+        assert!(lines.iter().any(|l| l == expected), "{expected}");
+    }
+}
+
+#[test]
+fn a_bad_key_is_named_with_the_valid_ones_and_writes_nothing() {
+    let dir = scratch("bad-key");
+    let out = dir.join("out");
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "nuu=0.3",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_failed_cleanly(&o, &out, &["nuu", "valid:", "nu,", "res", "method"]);
+    // A dotted key into a table that does not have it: serde names the valid fields.
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "material.poisson=0.3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["poisson", "expected one of", "`nu`"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_bad_value_is_named_and_writes_nothing() {
+    let dir = scratch("bad-value");
+    let out = dir.join("out");
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "nu=abc",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["material.nu", "expected f64"]);
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "method=mixed",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["method", "mixed-p1", "standard", "zonal"]);
+    let o = isochor(&[
+        "run",
+        "compressed-block",
+        "--set",
+        "res=6",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["mesh.res", "multiple of 4"]);
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "nu=0.7",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["nu"]);
+    let o = isochor(&["compare", "cantilever", "--methods", "standard,bogus"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("bogus") && stderr(&o).contains("mixed-p1"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_missing_file_is_named_and_writes_nothing() {
+    let dir = scratch("missing");
+    let out = dir.join("out");
+    let scene = dir.join("no-such-scene.toml");
+    let o = isochor(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["no-such-scene.toml", "cantilever"]);
+    let mesh = dir.join("no-such-mesh.msh");
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        &format!("mesh={}", mesh.display()),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &["no-such-mesh.msh", "not found"]);
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "mesh=shape.stl",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_failed_cleanly(&o, &out, &[".stl", ".msh", ".vtu"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_copied_scene_file_with_a_typo_is_rejected() {
+    let dir = scratch("typo");
+    let out = dir.join("out");
+    let shown = isochor(&["show", "cantilever"]);
+    assert!(shown.status.success());
+    let text = stdout(&shown).replace("[material]\n", "[material]\nyoungs_modulus = 1.0\n");
+    let path = dir.join("my.toml");
+    std::fs::write(&path, text).unwrap();
+    let o = isochor(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    std::fs::remove_file(&path).unwrap();
+    assert_failed_cleanly(&o, &out, &["my.toml", "youngs_modulus", "expected one of"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+const CONTRACT_KEYS: [&str; 13] = [
+    "scene",
+    "method",
+    "nu",
+    "vertices",
+    "tets",
+    "dofs",
+    "steps",
+    "newton_iterations",
+    "converged",
+    "wall_time_s",
+    "volume_change",
+    "probes",
+    "max_inverted_tets",
+];
+
+#[test]
+fn run_json_is_one_object_with_every_contract_key_and_out_writes_everything() {
+    let dir = scratch("json");
+    let out = dir.join("out");
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "res=1",
+        "--set",
+        "steps=2",
+        "--set",
+        "method=mixed-p1",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert_eq!(
+        text.trim().lines().count(),
+        1,
+        "exactly one JSON line: {text}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for key in CONTRACT_KEYS {
+        assert!(v.get(key).is_some(), "missing key {key}: {v}");
+    }
+    assert_eq!(v["scene"], "cantilever");
+    assert_eq!(v["method"], "mixed-p1");
+    assert_eq!(v["nu"], 0.4999);
+    assert_eq!(v["tets"], 6 * 4);
+    assert_eq!(v["steps"], 2);
+    assert!(v["converged"].is_boolean());
+    assert!(v["max_inverted_tets"].is_u64());
+    let probes = v["probes"].as_object().unwrap();
+    assert!(
+        probes["tip_deflection"].as_f64().unwrap() > 0.0,
+        "the tip bends down: {v}"
+    );
+    assert!(probes.contains_key("end_deflection"));
+    for f in [
+        "summary.json",
+        "iterations.csv",
+        "steps.csv",
+        "residuals.png",
+        "frame.pvd",
+        "frame_00000.vtu",
+        "frame_00002.vtu",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for key in CONTRACT_KEYS {
+        assert!(summary.get(key).is_some(), "summary.json lacks {key}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn compare_prints_a_table_and_writes_csv_and_markdown() {
+    let dir = scratch("compare");
+    let out = dir.join("out");
+    let o = isochor(&[
+        "compare",
+        "cantilever",
+        "--methods",
+        "standard,mixed-p1",
+        "--set",
+        "res=1",
+        "--set",
+        "steps=1",
+        "--sweep",
+        "nu=0.49,0.4999",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = stdout(&o);
+    assert!(
+        table.contains("tip_deflection") && table.contains("mixed-p1") && table.contains("0.4999"),
+        "{table}"
+    );
+    let csv = std::fs::read_to_string(out.join("compare.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 4, "{csv}");
+    assert!(std::fs::read_to_string(out.join("compare.md"))
+        .unwrap()
+        .contains("| nu |"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
