@@ -212,11 +212,11 @@ mod tests {
                 .unwrap()
                 .compliance();
         let (l, c) = (dense(&lumped, 5), dense(&consistent, 5));
-        for i in 0..5 {
-            let row: f64 = c[i].iter().sum();
-            assert!((row - l[i][i]).abs() < 1e-15 * l[i][i].max(1.0));
-            for j in 0..5 {
-                assert_eq!(c[i][j], c[j][i]);
+        for (i, row) in c.iter().enumerate() {
+            let sum: f64 = row.iter().sum();
+            assert!((sum - l[i][i]).abs() < 1e-15 * l[i][i].max(1.0));
+            for (j, &entry) in row.iter().enumerate() {
+                assert_eq!(entry, c[j][i]);
             }
         }
         // Vertex 0 touches both tets: (V_0 + V_1) / (4 kappa).

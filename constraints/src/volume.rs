@@ -14,8 +14,8 @@ pub fn tet_volume(x: &[Vec3; 4]) -> f64 {
 
 /// Gradient `dv/dx` of the signed volume (eq. 26a-c): with edges `e_i = x_i - x0`,
 /// `dv/dx1 = e2 x e3 / 6`, `dv/dx2 = e3 x e1 / 6`, `dv/dx3 = e1 x e2 / 6` and
-/// `dv/dx0 = -(dv/dx1 + dv/dx2 + dv/dx3)`: each is the outward area vector of the opposite
-/// face divided by 3, pointing away from it.
+/// `dv/dx0 = -(dv/dx1 + dv/dx2 + dv/dx3)`. Each block is `A_a n_a / 3`, with `A_a` the area
+/// of the face opposite vertex `a` and `n_a` its unit normal pointing toward `a`.
 pub fn volume_gradient(x: &[Vec3; 4]) -> Vector12 {
     let [e1, e2, e3] = edges(x);
     let g1 = e2.cross(&e3) / 6.0;

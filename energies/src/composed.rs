@@ -4,7 +4,7 @@
 //! its `(J - 1)^2` variant and the constrained neo-Hookean of Sheen et al. 2021 (eq. 12 + 13)
 //! are each one value of [`Composed`].
 
-use crate::kinematics::add_volumetric;
+use crate::kinematics::{add_volumetric_tangent, cofactor};
 use crate::materials::{DistortionalNeoHookean, FbarNeoHookean};
 use crate::parameters::require_lambda;
 use crate::penalties::{LogPenalty, QuadraticPenalty, SheenPenalty};
@@ -130,15 +130,13 @@ impl<D: Hyperelastic, P: VolumetricPenalty> Hyperelastic for Composed<D, P> {
 
     fn pk1(&self, f: &Matrix3<f64>) -> Result<Matrix3<f64>, OutOfDomain> {
         let (_, d1, _) = self.volumetric_derivatives(f)?;
-        let mut p = self.deviatoric.pk1(f)?;
-        add_volumetric(Some(&mut p), None, f, d1, 0.0);
-        Ok(p)
+        Ok(self.deviatoric.pk1(f)? + cofactor(f) * d1)
     }
 
     fn pk1_derivative(&self, f: &Matrix3<f64>) -> Result<Matrix9, OutOfDomain> {
         let (_, d1, d2) = self.volumetric_derivatives(f)?;
         let mut h = self.deviatoric.pk1_derivative(f)?;
-        add_volumetric(None, Some(&mut h), f, d1, d2);
+        add_volumetric_tangent(&mut h, f, d1, d2);
         Ok(h)
     }
 

@@ -57,24 +57,12 @@ pub fn add_det_hessian(h: &mut Matrix9, f: &Matrix3<f64>, s: f64) {
     }
 }
 
-/// Adds the derivatives of a term `g(J)` with `g'(J) = d1`, `g''(J) = d2`:
-/// `P += d1 cof(F)` and `dP/dF += d2 vec(cof) vec(cof)^T + d1 d2J/dF2`.
-pub fn add_volumetric(
-    p: Option<&mut Matrix3<f64>>,
-    dpdf: Option<&mut Matrix9>,
-    f: &Matrix3<f64>,
-    d1: f64,
-    d2: f64,
-) {
-    let cof = cofactor(f);
-    if let Some(p) = p {
-        *p += cof * d1;
-    }
-    if let Some(h) = dpdf {
-        let g = flatten(&cof);
-        h.ger(d2, &g, &g, 1.0);
-        add_det_hessian(h, f, d1);
-    }
+/// Adds the tangent of a term `g(J)` with `g'(J) = d1`, `g''(J) = d2`:
+/// `h += d2 vec(cof F) vec(cof F)^T + d1 d2J/dF2` (its stress is `d1 cof F`).
+pub fn add_volumetric_tangent(h: &mut Matrix9, f: &Matrix3<f64>, d1: f64, d2: f64) {
+    let g = flatten(&cofactor(f));
+    h.ger(d2, &g, &g, 1.0);
+    add_det_hessian(h, f, d1);
 }
 
 /// First invariant `I_C = tr(F^T F) = |F|_F^2`.

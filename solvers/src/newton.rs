@@ -3,7 +3,8 @@
 //! backtracking line search that rejects states outside the energy's domain (inverted
 //! elements under `log J`) and enforces sufficient decrease (Armijo).
 
-use crate::linear::{CholeskySolver, ShiftSchedule};
+use crate::linear::{cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower};
+use crate::LinearSolver;
 use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
 use crate::system::System;
 use crate::{IterationReport, SolverError, StepReport};
@@ -53,6 +54,48 @@ impl Newton {
         }
     }
 
+    /// Solves `K dx = rhs` in place, by Cholesky (shifting `K` until positive definite) or
+    /// by Jacobi-preconditioned CG; returns the shift used.
+    fn solve_linear(
+        &mut self,
+        linear: LinearSolver,
+        k: faer::sparse::SparseColMatRef<'_, usize, f64>,
+        rhs: &mut [f64],
+        report: &mut StepReport,
+    ) -> Result<f64, SolverError> {
+        let error = |e: crate::linear::LinearError| SolverError::Linear(e.to_string());
+        match linear {
+            LinearSolver::Direct => {
+                let start = Instant::now();
+                let shift = self
+                    .cholesky
+                    .factorize_with_shifts(k, &ShiftSchedule::default())
+                    .map_err(error)?;
+                report.timings.factorization += start.elapsed();
+                let start = Instant::now();
+                self.cholesky.solve_in_place(rhs).map_err(error)?;
+                report.timings.solve += start.elapsed();
+                Ok(shift)
+            }
+            LinearSolver::Iterative {
+                tolerance,
+                max_iterations,
+            } => {
+                let start = Instant::now();
+                let preconditioner = Jacobi::from_diagonal(&diagonal(k));
+                let b = rhs.to_vec();
+                rhs.fill(0.0);
+                let options = IterativeOptions {
+                    tolerance,
+                    max_iterations,
+                };
+                cg(&SymmetricLower(k), &preconditioner, &b, rhs, options).map_err(error)?;
+                report.timings.solve += start.elapsed();
+                Ok(0.0)
+            }
+        }
+    }
+
     /// At most `iterations` Newton iterations; returns whether the tolerances were met
     /// (the check costs an assembly, so `iterations = 1` may return `false` after a step
     /// that reached them).
@@ -86,17 +129,7 @@ impl Newton {
             let k = system.hessian.matrix(&system.hessian_values)?;
             report.timings.assembly += system.take_assembly_time();
 
-            let start = Instant::now();
-            let shift = self
-                .cholesky
-                .factorize_with_shifts(k.as_ref(), &ShiftSchedule::default())
-                .map_err(|e| SolverError::Linear(e.to_string()))?;
-            report.timings.factorization += start.elapsed();
-            let start = Instant::now();
-            self.cholesky
-                .solve_in_place(&mut rhs)
-                .map_err(|e| SolverError::Linear(e.to_string()))?;
-            report.timings.solve += start.elapsed();
+            let shift = self.solve_linear(settings.linear, k.as_ref(), &mut rhs, report)?;
 
             let mut direction = d_fixed.clone();
             for (&dof, dx) in dofs.free().iter().zip(&rhs) {

@@ -11,11 +11,14 @@
 //! tolerances; the Newton direction is a descent direction for it) that also rejects states
 //! outside the domain of the energy or the constraints.
 
-use crate::linear::{CholeskySolver, KktOptions, KktSolver, ShiftSchedule};
+use crate::linear::{
+    diagonal, minres, saddle_point_diagonal, CholeskySolver, IterativeOptions, Jacobi, KktOptions, KktSolver,
+    LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
+};
 use crate::model::Strategy;
 use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
 use crate::system::System;
-use crate::{IterationReport, SolverError, StepReport};
+use crate::{IterationReport, LinearSolver, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_constraints::Compliance;
 use isochor_mesh::Vec3;
@@ -33,6 +36,13 @@ const WATCHDOG_STEPS: usize = 3;
 enum Linear {
     Direct(Box<KktSolver>),
     Schur(Box<Schur>),
+    /// Jacobi-preconditioned MINRES on the whole saddle-point operator (sec. 8 of Francu et
+    /// al. 2021), keeping the latest matrices for the solves.
+    Iterative {
+        options: IterativeOptions,
+        k: SparseColMat<usize, f64>,
+        g: SparseColMat<usize, f64>,
+    },
 }
 
 /// The Schur complement solve of the zonal KKT system: `K` factorized by Cholesky, the few
@@ -79,14 +89,31 @@ impl SaddleNewton {
             Some(SparseColMat::try_new_from_triplets(m, m, &triplets).map_err(|e| SolverError::Linear(format!("{e:?}")))?)
         };
         let jacobian = system.jacobian.as_ref().ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
-        let linear = match system.model.strategy {
-            Strategy::SaddleSchur => Linear::Schur(Box::new(Schur {
+        let linear = match (system.settings.linear, system.model.strategy) {
+            (
+                LinearSolver::Iterative {
+                    tolerance,
+                    max_iterations,
+                },
+                _,
+            ) => {
+                let empty = |r, c| SparseColMat::try_new_from_triplets(r, c, &[]).expect("empty matrix");
+                Linear::Iterative {
+                    options: IterativeOptions {
+                        tolerance,
+                        max_iterations,
+                    },
+                    k: empty(0, 0),
+                    g: empty(0, 0),
+                }
+            }
+            (_, Strategy::SaddleSchur) => Linear::Schur(Box::new(Schur {
                 cholesky: CholeskySolver::new(system.hessian.pattern().symbolic()).map_err(linear_error)?,
                 rows: DMatrix::zeros(0, 0),
                 z: DMatrix::zeros(0, 0),
                 schur: DMatrix::zeros(0, 0),
             })),
-            _ => {
+            (_, _) => {
                 let dofs = &system.model.dofs;
                 let anchors: Vec<Option<usize>> = (0..m)
                     .map(|row| {
@@ -194,7 +221,6 @@ impl SaddleNewton {
                 return Ok(());
             }
             // Right-hand side, with the prescribed increments moved over (K_fc, G_c).
-            let nf = system.model.dofs.num_free();
             let mut rhs_x: Vec<f64> = sigma_f.iter().map(|s| -s).collect();
             system.hessian.add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
             let mut rhs_p: Vec<f64> = theta.iter().map(|t| -t).collect();
@@ -331,6 +357,11 @@ impl SaddleNewton {
                 schur.schur = s;
                 shift
             }
+            Linear::Iterative { k: kk, g: gg, .. } => {
+                *kk = k;
+                *gg = g;
+                0.0
+            }
         };
         report.timings.factorization += start.elapsed();
         Ok(shift)
@@ -372,6 +403,25 @@ impl SaddleNewton {
                     })?;
                 let dx = y - &schur.z * &dp;
                 (dx.as_slice().to_vec(), dp.as_slice().to_vec())
+            }
+            Linear::Iterative { options, k, g } => {
+                let c = self.compliance.as_ref().map(|c| c.as_ref());
+                let c_op = c.as_ref().map(|c| c as &dyn LinearOperator);
+                let k_op = SymmetricLower(k.as_ref());
+                let operator = SaddlePoint {
+                    k: &k_op,
+                    g: g.as_ref(),
+                    c: c_op,
+                };
+                let c_diag: Option<Vec<f64>> = c.map(diagonal);
+                let scales = saddle_point_diagonal(&diagonal(k.as_ref()), g.as_ref(), c_diag.as_deref());
+                let mut b = f;
+                b.extend(h);
+                let mut solution = vec![0.0; b.len()];
+                minres(&operator, &Jacobi::from_diagonal(&scales), &b, &mut solution, *options)
+                    .map_err(linear_error)?;
+                let dp = solution.split_off(nf);
+                (solution, dp)
             }
         };
         report.timings.solve += start.elapsed();

@@ -118,6 +118,11 @@ impl Simulation {
     pub fn new(problem: Problem, settings: Settings) -> Result<Self, SolverError> {
         check_settings(&settings)?;
         let model = Model::new(problem, settings.project_hessians)?;
+        if model.strategy == Strategy::Dual && settings.linear != crate::LinearSolver::Direct {
+            return Err(SolverError::InvalidProblem(
+                "the dual solver reuses the primal factorization (eq. 41): use the direct linear solver".into(),
+            ));
+        }
         let n = model.mesh.num_vertices();
         let m = model.row_volumes.len();
         let state = State {

@@ -545,3 +545,18 @@ fn p1_box_kkt_with_inconsistent_rhs_is_an_error_value() {
         "{result:?}"
     );
 }
+
+#[test]
+fn scratch_rank_of_g() {
+    for cells in [[6, 3, 3], [12, 3, 3], [16, 4, 4], [8, 8, 8]] {
+        let P1Box { g, .. } = p1_box(cells);
+        let gd = g.as_ref().to_dense();
+        let gm = DMatrix::from_fn(gd.nrows(), gd.ncols(), |i, j| gd[(i, j)]);
+        let ggt = &gm * gm.transpose();
+        let ev = ggt.symmetric_eigenvalues();
+        let max = ev.iter().fold(0.0f64, |a, b| a.max(*b));
+        let tiny = ev.iter().filter(|v| v.abs() < 1e-12 * max).count();
+        let small = ev.iter().filter(|v| v.abs() < 1e-8 * max).count();
+        eprintln!("{cells:?}: m = {}, zero = {tiny}, < 1e-8: {small}", gm.nrows());
+    }
+}

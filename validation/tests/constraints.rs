@@ -27,24 +27,26 @@ fn unflatten(q: &DVector<f64>) -> Vec<Vec3> {
         .collect()
 }
 
+/// A dense matrix of `shape` from sparse `(value, (row, col))` entries.
+fn dense<'a>(
+    shape: (usize, usize),
+    entries: impl Iterator<Item = (&'a f64, (usize, usize))>,
+) -> DMatrix<f64> {
+    let mut d = DMatrix::zeros(shape.0, shape.1);
+    entries.for_each(|(&v, (i, j))| d[(i, j)] += v);
+    d
+}
+
 /// The Jacobian `G` at `x`, dense.
 fn jacobian(set: &dyn ConstraintSet, x: &[Vec3]) -> DMatrix<f64> {
     let g = jacobian_matrix(set, x).expect("constraint Jacobian");
-    let mut d = DMatrix::zeros(g.rows(), g.cols());
-    for (&v, (i, j)) in g.iter() {
-        d[(i, j)] += v;
-    }
-    d
+    dense(g.shape(), g.iter())
 }
 
 /// The geometric stiffness `K_g` at `x` and multipliers `p`, dense.
 fn geometric_stiffness(set: &dyn ConstraintSet, x: &[Vec3], p: &[f64]) -> DMatrix<f64> {
     let k = geometric_stiffness_matrix(set, x, p).expect("geometric stiffness");
-    let mut d = DMatrix::zeros(k.rows(), k.cols());
-    for (&v, (i, j)) in k.iter() {
-        d[(i, j)] += v;
-    }
-    d
+    dense(k.shape(), k.iter())
 }
 
 fn values(set: &dyn ConstraintSet, x: &[Vec3]) -> DVector<f64> {

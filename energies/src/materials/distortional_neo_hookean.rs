@@ -1,6 +1,6 @@
 //! The distortional neo-Hookean energy, eq. 32 of Francu et al. 2021.
 
-use crate::kinematics::{add_volumetric, positive_determinant};
+use crate::kinematics::{add_volumetric_tangent, cofactor, positive_determinant};
 use crate::parameters::require_mu;
 use crate::{Hyperelastic, Matrix9, OutOfDomain, ParameterError};
 use nalgebra::Matrix3;
@@ -43,15 +43,13 @@ impl Hyperelastic for DistortionalNeoHookean {
 
     fn pk1(&self, f: &Matrix3<f64>) -> Result<Matrix3<f64>, OutOfDomain> {
         let j = self.j(f)?;
-        let mut p = f * self.mu;
-        add_volumetric(Some(&mut p), None, f, -self.mu / j, 0.0);
-        Ok(p)
+        Ok((f - cofactor(f) / j) * self.mu)
     }
 
     fn pk1_derivative(&self, f: &Matrix3<f64>) -> Result<Matrix9, OutOfDomain> {
         let j = self.j(f)?;
         let mut h = Matrix9::from_diagonal_element(self.mu);
-        add_volumetric(None, Some(&mut h), f, -self.mu / j, self.mu / (j * j));
+        add_volumetric_tangent(&mut h, f, -self.mu / j, self.mu / (j * j));
         Ok(h)
     }
 }

@@ -1,7 +1,7 @@
 //! Stable neo-Hookean (Smith, de Goes and Kim 2018), the invertible energy compared against in
 //! sec. 5 of Sheen et al. 2021.
 
-use crate::kinematics::{add_volumetric, first_invariant, flatten};
+use crate::kinematics::{add_volumetric_tangent, cofactor, first_invariant, flatten};
 use crate::parameters::{require, require_mu};
 use crate::{Hyperelastic, Lame, Matrix9, OutOfDomain, ParameterError};
 use nalgebra::Matrix3;
@@ -78,10 +78,8 @@ impl Hyperelastic for StableNeoHookean {
     /// `P = mu (1 - 1/(I_C + 1)) F + lambda (J - alpha) cof F`.
     fn pk1(&self, f: &Matrix3<f64>) -> Result<Matrix3<f64>, OutOfDomain> {
         let ic = first_invariant(f);
-        let mut p = f * (self.mu * (1.0 - 1.0 / (ic + 1.0)));
         let d1 = self.lambda * (f.determinant() - self.alpha);
-        add_volumetric(Some(&mut p), None, f, d1, 0.0);
-        Ok(p)
+        Ok(f * (self.mu * (1.0 - 1.0 / (ic + 1.0))) + cofactor(f) * d1)
     }
 
     /// `dP/dF = mu (1 - 1/(I_C+1)) I + 2 mu/(I_C+1)^2 f f^T + lambda g g^T
@@ -92,7 +90,7 @@ impl Hyperelastic for StableNeoHookean {
         let fv = flatten(f);
         h.ger(2.0 * self.mu / (ic1 * ic1), &fv, &fv, 1.0);
         let d1 = self.lambda * (f.determinant() - self.alpha);
-        add_volumetric(None, Some(&mut h), f, d1, self.lambda);
+        add_volumetric_tangent(&mut h, f, d1, self.lambda);
         Ok(h)
     }
 
