@@ -11,7 +11,8 @@ use isochor_solvers::{Method, RunSummary, Settings, Simulation, Stepping};
 use std::time::Duration;
 
 fn solve(res: usize, method: Method) -> (RunSummary, usize) {
-    let mut sim = Simulation::new(cantilever(res, method, 0.4999), Settings::default()).expect("valid problem");
+    let mut sim = Simulation::new(cantilever(res, method, 0.4999), Settings::default())
+        .expect("valid problem");
     let dofs = sim.num_dofs();
     let summary = sim
         .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
@@ -47,7 +48,9 @@ fn bench(c: &mut Criterion) {
                 factorization.as_secs_f64() * 1e3,
                 solve_time.as_secs_f64() * 1e3,
             );
-            group.bench_function(format!("{method}/res{res}"), |b| b.iter(|| solve(res, method)));
+            group.bench_function(format!("{method}/res{res}"), |b| {
+                b.iter(|| solve(res, method))
+            });
         }
     }
     group.finish();

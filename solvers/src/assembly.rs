@@ -20,12 +20,22 @@ impl Layout {
     /// Layout of a symmetric `3n x 3n` Hessian given with both triangles; the pattern keeps
     /// the lower triangle of the free-free block.
     pub fn hessian(pairs: &[(usize, usize)], dofs: &Dofs) -> Result<Self, SolverError> {
-        Self::build(pairs, |r| dofs.free_index(r), dofs, Triangle::Lower, dofs.num_free())
+        Self::build(
+            pairs,
+            |r| dofs.free_index(r),
+            dofs,
+            Triangle::Lower,
+            dofs.num_free(),
+        )
     }
 
     /// Layout of a constraint Jacobian `G` (`rows x 3n`): all rows kept, prescribed columns
     /// moved to the coupling list.
-    pub fn jacobian(pairs: &[(usize, usize)], rows: usize, dofs: &Dofs) -> Result<Self, SolverError> {
+    pub fn jacobian(
+        pairs: &[(usize, usize)],
+        rows: usize,
+        dofs: &Dofs,
+    ) -> Result<Self, SolverError> {
         Self::build(pairs, Some, dofs, Triangle::Full, rows)
     }
 

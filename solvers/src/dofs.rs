@@ -77,7 +77,11 @@ impl Dofs {
     }
 
     /// The prescribed DOFs with their target values at load parameter `t`.
-    pub fn targets<'a>(&'a self, rest: &'a [Vec3], t: f64) -> impl Iterator<Item = (usize, f64)> + 'a {
+    pub fn targets<'a>(
+        &'a self,
+        rest: &'a [Vec3],
+        t: f64,
+    ) -> impl Iterator<Item = (usize, f64)> + 'a {
         self.prescribed.iter().map(move |&(dof, c)| {
             let (v, k) = (dof / 3, dof % 3);
             (dof, self.conditions[c].motion.position(&rest[v], t)[k])

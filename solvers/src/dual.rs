@@ -29,11 +29,21 @@ pub fn solve(
 ) -> Result<(), SolverError> {
     let settings = system.settings;
     let model = system.model;
-    let constraints = model.constraints.clone().ok_or_else(|| SolverError::InvalidProblem("dual ascent without constraints".into()))?;
-    let augmented = model.augmented.as_ref().ok_or_else(|| SolverError::InvalidProblem("dual ascent without a primal term".into()))?;
+    let constraints = model
+        .constraints
+        .clone()
+        .ok_or_else(|| SolverError::InvalidProblem("dual ascent without constraints".into()))?;
+    let augmented = model
+        .augmented
+        .as_ref()
+        .ok_or_else(|| SolverError::InvalidProblem("dual ascent without a primal term".into()))?;
     let compliance = match constraints.compliance() {
         Compliance::Diagonal(d) => d,
-        Compliance::Sparse(_) => return Err(SolverError::InvalidProblem("dual ascent needs a lumped compliance".into())),
+        Compliance::Sparse(_) => {
+            return Err(SolverError::InvalidProblem(
+                "dual ascent needs a lumped compliance".into(),
+            ))
+        }
     };
     let m = p.len();
     let mut phi = vec![0.0; m];
@@ -44,7 +54,11 @@ pub fn solve(
         // Inexact primal solves: one Newton iteration per dual update (the "single linear
         // solve" of sec. 8.3) until the constraints are met, then a converged primal solve.
         let mut primal = StepReport::default();
-        let limit = if dual_converged { settings.max_iterations } else { 1 };
+        let limit = if dual_converged {
+            settings.max_iterations
+        } else {
+            1
+        };
         let result = newton.iterate(system, x, target, &mut primal, limit);
         report.iterations.extend(primal.iterations);
         report.timings += primal.timings;
@@ -73,24 +87,43 @@ pub fn solve(
         let mut direction = theta.clone();
         if let (true, Some((prev_theta, prev_direction))) = (settings.dual_conjugate, &previous) {
             let prev_sq: f64 = prev_theta.iter().map(|t: &f64| t * t).sum();
-            let beta = (theta.iter().zip(prev_theta).map(|(a, b)| a * (a - b)).sum::<f64>() / prev_sq).max(0.0);
+            let beta = (theta
+                .iter()
+                .zip(prev_theta)
+                .map(|(a, b)| a * (a - b))
+                .sum::<f64>()
+                / prev_sq)
+                .max(0.0);
             for (d, pd) in direction.iter_mut().zip(prev_direction) {
                 *d += beta * pd;
             }
-            if direction.iter().zip(&theta).map(|(d, t)| d * t).sum::<f64>() <= 0.0 {
+            if direction
+                .iter()
+                .zip(&theta)
+                .map(|(d, t)| d * t)
+                .sum::<f64>()
+                <= 0.0
+            {
                 direction.clone_from(&theta);
             }
         }
         // A_2 d = G z with (M/h^2 + K) z = G^T d, on free DOFs, reusing the factor.
         let start = Instant::now();
-        let jacobian = system.jacobian.as_ref().expect("dual system has a Jacobian layout");
+        let jacobian = system
+            .jacobian
+            .as_ref()
+            .expect("dual system has a Jacobian layout");
         constraints.jacobian_values(x, &mut system.jacobian_values)?;
         let g = jacobian.matrix(&system.jacobian_values)?;
         let g = g.as_ref();
         let nf = model.dofs.num_free();
         let mut z = vec![0.0; nf];
         for (col, zc) in z.iter_mut().enumerate() {
-            *zc = g.row_idx_of_col(col).zip(g.val_of_col(col)).map(|(r, v)| v * direction[r]).sum();
+            *zc = g
+                .row_idx_of_col(col)
+                .zip(g.val_of_col(col))
+                .map(|(r, v)| v * direction[r])
+                .sum();
         }
         newton
             .cholesky()
@@ -103,7 +136,9 @@ pub fn solve(
             }
         }
         let numerator: f64 = theta.iter().zip(&direction).map(|(t, d)| t * d).sum();
-        let denominator: f64 = (0..m).map(|i| direction[i] * (a2_d[i] + compliance[i] * direction[i])).sum();
+        let denominator: f64 = (0..m)
+            .map(|i| direction[i] * (a2_d[i] + compliance[i] * direction[i]))
+            .sum();
         report.timings.solve += start.elapsed();
         if !(denominator > 0.0 && numerator.is_finite() && theta_sq.is_finite()) {
             return Err(SolverError::Linear(format!(

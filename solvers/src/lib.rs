@@ -23,7 +23,9 @@ pub mod terms;
 
 pub use dofs::Dofs;
 pub use error::SolverError;
-pub use problem::{Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Problem, ZonalEnergy};
+pub use problem::{
+    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Problem, ZonalEnergy,
+};
 pub use report::{IterationReport, StepReport, Timings};
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{Energies, Frame, RunSummary, Simulation, SimulationFailure, State, Stepping};

@@ -2,7 +2,8 @@
 //! loads it lists, the constraint set of a mixed or zonal method, the lumped masses.
 
 use crate::terms::{
-    AugmentedConstraints, DeadTraction, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure, Gravity,
+    AugmentedConstraints, DeadTraction, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure,
+    Gravity,
 };
 use crate::{Dofs, Load, Method, Problem, SolverError, ZonalEnergy};
 use isochor_constraints::{
@@ -136,7 +137,10 @@ impl Model {
                 Strategy::SaddleDirect
             }
             Method::MixedP1Log => {
-                constraints = Some(Arc::new(nodal(Measure::Logarithmic, material.nodal_compliance)?));
+                constraints = Some(Arc::new(nodal(
+                    Measure::Logarithmic,
+                    material.nodal_compliance,
+                )?));
                 Strategy::SaddleDirect
             }
             Method::MixedP0 | Method::MixedP0Log => {
@@ -154,7 +158,8 @@ impl Model {
                         "static condensation needs C^-1, which does not exist when C = 0; use mixed-p1 or dual",
                     ));
                 }
-                let set: Arc<dyn ConstraintSet> = Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
+                let set: Arc<dyn ConstraintSet> =
+                    Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
                 let c = diagonal(set.compliance())?;
                 let stiffness = c.iter().map(|ci| 1.0 / ci).collect();
                 let zero = vec![0.0; c.len()];
@@ -162,7 +167,8 @@ impl Model {
                 Strategy::Minimize
             }
             Method::Dual => {
-                let set: Arc<dyn ConstraintSet> = Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
+                let set: Arc<dyn ConstraintSet> =
+                    Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
                 let c = diagonal(set.compliance())?;
                 let stiffness = match material.dual_base_nu {
                     Some(nu) => {
@@ -172,7 +178,10 @@ impl Model {
                             isochor_energies::bulk_modulus(material.young(), nu)?,
                             NodalCompliance::Lumped,
                         )?;
-                        diagonal(base.compliance())?.iter().map(|ci| 1.0 / ci).collect()
+                        diagonal(base.compliance())?
+                            .iter()
+                            .map(|ci| 1.0 / ci)
+                            .collect()
                     }
                     None => vec![0.0; c.len()],
                 };
@@ -187,7 +196,11 @@ impl Model {
             }
         };
 
-        let mut terms: Vec<Box<dyn EnergyTerm>> = vec![Box::new(Elastic::new(&mesh, elastic.clone(), project_hessians))];
+        let mut terms: Vec<Box<dyn EnergyTerm>> = vec![Box::new(Elastic::new(
+            &mesh,
+            elastic.clone(),
+            project_hessians,
+        ))];
         if let Some(skin) = material.epidermis {
             let skin = Epidermis::from_young_poisson(skin.young, skin.poisson, skin.gamma)?;
             terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
@@ -198,7 +211,9 @@ impl Model {
                 Load::Traction { faces, traction } => {
                     Box::new(DeadTraction::new(mesh.positions(), &faces, traction))
                 }
-                Load::Pressure { faces, pressure } => Box::new(FollowerPressure::new(faces, pressure)),
+                Load::Pressure { faces, pressure } => {
+                    Box::new(FollowerPressure::new(faces, pressure))
+                }
             });
         }
         let rows = constraints

@@ -3,10 +3,12 @@
 //! backtracking line search that rejects states outside the energy's domain (inverted
 //! elements under `log J`) and enforces sufficient decrease (Armijo).
 
-use crate::linear::{cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower};
-use crate::LinearSolver;
+use crate::linear::{
+    cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower,
+};
 use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
 use crate::system::System;
+use crate::LinearSolver;
 use crate::{IterationReport, SolverError, StepReport};
 use isochor_mesh::Vec3;
 use std::time::Instant;
@@ -135,9 +137,16 @@ impl Newton {
             for (&dof, dx) in dofs.free().iter().zip(&rhs) {
                 direction[dof] = *dx;
             }
-            let slope: f64 = eval.gradient.iter().zip(&direction).map(|(g, d)| g * d).sum();
+            let slope: f64 = eval
+                .gradient
+                .iter()
+                .zip(&direction)
+                .map(|(g, d)| g * d)
+                .sum();
             let moving_boundary = max_abs(&d_fixed) > 0.0;
-            let slack = 64.0 * f64::EPSILON * eval.energy.abs().max(1e-300);
+            // Energy differences below this are rounding noise; there, a smaller gradient
+            // decides instead of the Armijo condition.
+            let noise = 1e3 * f64::EPSILON * eval.magnitude;
             let mut alpha = 1.0;
             let mut accepted = None;
             for backtracks in 0..=settings.max_backtracks {
@@ -145,9 +154,15 @@ impl Newton {
                 add_scaled(&mut trial, &direction, alpha);
                 if system.is_valid(&trial) {
                     let e = system.energy(&trial, target.load, false)?.energy;
-                    if e.is_finite()
-                        && (moving_boundary || e <= eval.energy + ARMIJO * alpha * slope + slack)
-                    {
+                    let armijo = e <= eval.energy + ARMIJO * alpha * slope;
+                    let accept = e.is_finite()
+                        && (moving_boundary
+                            || armijo
+                            || (e <= eval.energy + noise && {
+                                let g = system.energy(&trial, target.load, true)?.gradient;
+                                norm(&dofs.gather(&g)) < force
+                            }));
+                    if accept {
                         accepted = Some((trial, backtracks));
                         break;
                     }

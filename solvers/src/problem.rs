@@ -80,7 +80,11 @@ impl FromStr for Method {
             .find(|m| m.name() == s)
             .ok_or_else(|| SolverError::UnknownMethod {
                 name: s.to_string(),
-                valid: Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>().join(", "),
+                valid: Method::ALL
+                    .iter()
+                    .map(|m| m.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })
     }
 }
@@ -191,29 +195,59 @@ impl Material {
 
     /// Checks every parameter, naming the first bad one.
     pub fn validate(&self) -> Result<(), ParameterError> {
-        let bad = |name, value, reason| Err(ParameterError { name, value, reason });
+        let bad = |name, value, reason| {
+            Err(ParameterError {
+                name,
+                value,
+                reason,
+            })
+        };
         Lame::shear_modulus(self.young(), self.nu)?;
         if !(self.density.is_finite() && self.density >= 0.0) {
-            return bad("rho", self.density, "density must be finite and non-negative");
+            return bad(
+                "rho",
+                self.density,
+                "density must be finite and non-negative",
+            );
         }
         if !(self.zonal_lambda.is_finite() && self.zonal_lambda >= 0.0) {
-            return bad("lambda", self.zonal_lambda, "must be finite and non-negative");
+            return bad(
+                "lambda",
+                self.zonal_lambda,
+                "must be finite and non-negative",
+            );
         }
         if !(self.beta.is_finite() && self.beta >= 0.0) {
-            return bad("beta", self.beta, "beta must be finite and non-negative (eq. 13)");
+            return bad(
+                "beta",
+                self.beta,
+                "beta must be finite and non-negative (eq. 13)",
+            );
         }
         if !(self.epsilon.is_finite() && self.epsilon > 0.0 && self.epsilon < 1.0) {
-            return bad("epsilon", self.epsilon, "epsilon must lie in (0, 1) (eq. 11)");
+            return bad(
+                "epsilon",
+                self.epsilon,
+                "epsilon must lie in (0, 1) (eq. 11)",
+            );
         }
         if let Some(nu) = self.dual_base_nu {
             if !(nu > -1.0 && nu < 0.5) {
-                return bad("dual_base_nu", nu, "the base Poisson ratio must lie in (-1, 0.5)");
+                return bad(
+                    "dual_base_nu",
+                    nu,
+                    "the base Poisson ratio must lie in (-1, 0.5)",
+                );
             }
         }
         if let Some(skin) = self.epidermis {
             Lame::from_young_poisson(skin.young, skin.poisson)?;
             if !(skin.gamma.is_finite() && skin.gamma >= 0.0) {
-                return bad("epidermis_gamma", skin.gamma, "gamma must be finite and non-negative");
+                return bad(
+                    "epidermis_gamma",
+                    skin.gamma,
+                    "gamma must be finite and non-negative",
+                );
             }
         }
         Ok(())
@@ -229,7 +263,11 @@ pub enum Motion {
     /// Translated by `t * offset`.
     Translate(Vec3),
     /// Rotated by `t * angle` (radians) about `axis` through `center` (twisting).
-    Rotate { center: Vec3, axis: Vec3, angle: f64 },
+    Rotate {
+        center: Vec3,
+        axis: Vec3,
+        angle: f64,
+    },
     /// Scaled about `center` by `1 + t (factors - 1)` per axis (stretching).
     Scale { center: Vec3, factors: Vec3 },
 }
@@ -245,8 +283,10 @@ impl Motion {
                 axis,
                 angle,
             } => {
-                let rotation =
-                    nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), t * angle);
+                let rotation = nalgebra::Rotation3::from_axis_angle(
+                    &nalgebra::Unit::new_normalize(axis),
+                    t * angle,
+                );
                 center + rotation * (rest - center)
             }
             Motion::Scale { center, factors } => {
@@ -274,11 +314,17 @@ pub enum Load {
     /// Body force `rho g` per unit rest volume, lumped to the vertices.
     Gravity(Vec3),
     /// Dead traction (force per unit rest area) on boundary faces.
-    Traction { faces: Vec<[usize; 3]>, traction: Vec3 },
+    Traction {
+        faces: Vec<[usize; 3]>,
+        traction: Vec3,
+    },
     /// Follower pressure on boundary faces, oriented with the body's outward normal: a
     /// positive pressure pushes the faces into the body, so listing the faces that line a
     /// chamber inflates it.
-    Pressure { faces: Vec<[usize; 3]>, pressure: f64 },
+    Pressure {
+        faces: Vec<[usize; 3]>,
+        pressure: f64,
+    },
 }
 
 /// Everything a simulation needs.

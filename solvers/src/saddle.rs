@@ -12,8 +12,8 @@
 //! outside the domain of the energy or the constraints.
 
 use crate::linear::{
-    diagonal, minres, saddle_point_diagonal, CholeskySolver, IterativeOptions, Jacobi, KktOptions, KktSolver,
-    LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
+    diagonal, minres, saddle_point_diagonal, CholeskySolver, IterativeOptions, Jacobi, KktOptions,
+    KktSolver, LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
 };
 use crate::model::Strategy;
 use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
@@ -72,23 +72,35 @@ fn linear_error(e: crate::linear::LinearError) -> SolverError {
 impl SaddleNewton {
     /// Symbolic analysis for the system's patterns (once per run).
     pub fn new(system: &System<'_>) -> Result<Self, SolverError> {
-        let constraints = system
-            .model
-            .constraints
-            .as_ref()
-            .ok_or_else(|| SolverError::InvalidProblem("saddle-point Newton without constraints".into()))?;
+        let constraints = system.model.constraints.as_ref().ok_or_else(|| {
+            SolverError::InvalidProblem("saddle-point Newton without constraints".into())
+        })?;
         let m = constraints.num_constraints();
         let compliance_entries: Vec<(usize, usize, f64)> = match constraints.compliance() {
-            Compliance::Diagonal(d) => d.into_iter().enumerate().filter(|e| e.1 != 0.0).map(|(i, v)| (i, i, v)).collect(),
+            Compliance::Diagonal(d) => d
+                .into_iter()
+                .enumerate()
+                .filter(|e| e.1 != 0.0)
+                .map(|(i, v)| (i, i, v))
+                .collect(),
             Compliance::Sparse(t) => t.into_iter().filter(|e| e.2 != 0.0).collect(),
         };
         let compliance = if compliance_entries.is_empty() {
             None
         } else {
-            let triplets: Vec<_> = compliance_entries.iter().map(|&(r, c, v)| Triplet::new(r, c, v)).collect();
-            Some(SparseColMat::try_new_from_triplets(m, m, &triplets).map_err(|e| SolverError::Linear(format!("{e:?}")))?)
+            let triplets: Vec<_> = compliance_entries
+                .iter()
+                .map(|&(r, c, v)| Triplet::new(r, c, v))
+                .collect();
+            Some(
+                SparseColMat::try_new_from_triplets(m, m, &triplets)
+                    .map_err(|e| SolverError::Linear(format!("{e:?}")))?,
+            )
         };
-        let jacobian = system.jacobian.as_ref().ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
+        let jacobian = system
+            .jacobian
+            .as_ref()
+            .ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
         let linear = match (system.settings.linear, system.model.strategy) {
             (
                 LinearSolver::Iterative {
@@ -97,7 +109,8 @@ impl SaddleNewton {
                 },
                 _,
             ) => {
-                let empty = |r, c| SparseColMat::try_new_from_triplets(r, c, &[]).expect("empty matrix");
+                let empty =
+                    |r, c| SparseColMat::try_new_from_triplets(r, c, &[]).expect("empty matrix");
                 Linear::Iterative {
                     options: IterativeOptions {
                         tolerance,
@@ -108,7 +121,8 @@ impl SaddleNewton {
                 }
             }
             (_, Strategy::SaddleSchur) => Linear::Schur(Box::new(Schur {
-                cholesky: CholeskySolver::new(system.hessian.pattern().symbolic()).map_err(linear_error)?,
+                cholesky: CholeskySolver::new(system.hessian.pattern().symbolic())
+                    .map_err(linear_error)?,
                 rows: DMatrix::zeros(0, 0),
                 z: DMatrix::zeros(0, 0),
                 schur: DMatrix::zeros(0, 0),
@@ -216,13 +230,18 @@ impl SaddleNewton {
                 return Err(SolverError::NonFinite("the saddle-point residual"));
             }
             let moving_boundary = max_abs(&d_fixed) > 0.0;
-            if force <= target.force_tolerance && constraint <= settings.constraint_tolerance && !moving_boundary {
+            if force <= target.force_tolerance
+                && constraint <= settings.constraint_tolerance
+                && !moving_boundary
+            {
                 report.converged = true;
                 return Ok(());
             }
             // Right-hand side, with the prescribed increments moved over (K_fc, G_c).
             let mut rhs_x: Vec<f64> = sigma_f.iter().map(|s| -s).collect();
-            system.hessian.add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
+            system
+                .hessian
+                .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
             let mut rhs_p: Vec<f64> = theta.iter().map(|t| -t).collect();
             jacobian.add_coupling(&system.jacobian_values, &d_fixed, -1.0, &mut rhs_p);
             let k = system.hessian.matrix(&system.hessian_values)?;
@@ -238,7 +257,10 @@ impl SaddleNewton {
             }
             let merit0 = merit(&sigma_f, &theta);
             let acceptable = |m: f64, alpha: f64| {
-                m.is_finite() && (moving_boundary || merit0 <= 100.0 || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0)
+                m.is_finite()
+                    && (moving_boundary
+                        || merit0 <= 100.0
+                        || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0)
             };
             let mut alpha = 1.0;
             let mut accepted = None;
@@ -273,9 +295,11 @@ impl SaddleNewton {
                             full[dof] = *v;
                         }
                         add_scaled(&mut corrected_x, &full, 1.0);
-                        let corrected_p: Vec<f64> = trial_p.iter().zip(&cp).map(|(a, b)| a + b).collect();
+                        let corrected_p: Vec<f64> =
+                            trial_p.iter().zip(&cp).map(|(a, b)| a + b).collect();
                         if system.is_valid(&corrected_x) {
-                            let (s, t) = self.residuals(system, &corrected_x, &corrected_p, target.load)?;
+                            let (s, t) =
+                                self.residuals(system, &corrected_x, &corrected_p, target.load)?;
                             if acceptable(merit(&system.model.dofs.gather(&s), &t), 1.0) {
                                 accepted = Some((corrected_x, corrected_p, 0));
                                 break;
@@ -338,14 +362,21 @@ impl SaddleNewton {
                 let (m, nf) = (g.nrows(), g.ncols());
                 let mut rows = DMatrix::<f64>::zeros(m, nf);
                 for col in 0..nf {
-                    for (row, v) in g.as_ref().row_idx_of_col(col).zip(g.as_ref().val_of_col(col)) {
+                    for (row, v) in g
+                        .as_ref()
+                        .row_idx_of_col(col)
+                        .zip(g.as_ref().val_of_col(col))
+                    {
                         rows[(row, col)] += v;
                     }
                 }
                 let mut z = DMatrix::<f64>::zeros(nf, m);
                 for i in 0..m {
                     let mut col: Vec<f64> = rows.row(i).iter().copied().collect();
-                    schur.cholesky.solve_in_place(&mut col).map_err(linear_error)?;
+                    schur
+                        .cholesky
+                        .solve_in_place(&mut col)
+                        .map_err(linear_error)?;
                     z.set_column(i, &DVector::from_vec(col));
                 }
                 let mut s = &rows * &z;
@@ -387,7 +418,10 @@ impl SaddleNewton {
             Linear::Schur(schur) => {
                 // dp = (G K^-1 G^T + C)^-1 (G K^-1 f - h), dx = K^-1 f - Z dp.
                 let mut y = f;
-                schur.cholesky.solve_in_place(&mut y).map_err(linear_error)?;
+                schur
+                    .cholesky
+                    .solve_in_place(&mut y)
+                    .map_err(linear_error)?;
                 let y = DVector::from_vec(y);
                 let b = &schur.rows * &y - DVector::from_vec(h);
                 let dp = schur
@@ -414,12 +448,19 @@ impl SaddleNewton {
                     c: c_op,
                 };
                 let c_diag: Option<Vec<f64>> = c.map(diagonal);
-                let scales = saddle_point_diagonal(&diagonal(k.as_ref()), g.as_ref(), c_diag.as_deref());
+                let scales =
+                    saddle_point_diagonal(&diagonal(k.as_ref()), g.as_ref(), c_diag.as_deref());
                 let mut b = f;
                 b.extend(h);
                 let mut solution = vec![0.0; b.len()];
-                minres(&operator, &Jacobi::from_diagonal(&scales), &b, &mut solution, *options)
-                    .map_err(linear_error)?;
+                minres(
+                    &operator,
+                    &Jacobi::from_diagonal(&scales),
+                    &b,
+                    &mut solution,
+                    *options,
+                )
+                .map_err(linear_error)?;
                 let dp = solution.split_off(nf);
                 (solution, dp)
             }

@@ -9,7 +9,10 @@ pub enum LinearSolver {
     Direct,
     /// Preconditioned iterative solve (CG for SPD, MINRES for saddle points) with a relative
     /// tolerance and an iteration limit, for meshes too large to factor (sec. 8 of Francu et al.).
-    Iterative { tolerance: f64, max_iterations: usize },
+    Iterative {
+        tolerance: f64,
+        max_iterations: usize,
+    },
 }
 
 /// Limits and tolerances of the nonlinear solvers.

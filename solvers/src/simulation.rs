@@ -128,7 +128,14 @@ impl Simulation {
         let state = State {
             positions: model.mesh.positions().to_vec(),
             velocities: vec![Vec3::zeros(); n],
-            multipliers: vec![0.0; if model.strategy == Strategy::Minimize { 0 } else { m }],
+            multipliers: vec![
+                0.0;
+                if model.strategy == Strategy::Minimize {
+                    0
+                } else {
+                    m
+                }
+            ],
             t: 0.0,
         };
         Ok(Simulation {
@@ -184,10 +191,13 @@ impl Simulation {
     pub fn tet_pressures(&self, state: &State) -> Vec<f64> {
         let x = &state.positions;
         let constrained = match &self.model.constraints {
-            Some(c) if state.multipliers.len() == c.num_constraints() => Some(c.tet_pressures(x, &state.multipliers)),
+            Some(c) if state.multipliers.len() == c.num_constraints() => {
+                Some(c.tet_pressures(x, &state.multipliers))
+            }
             _ => None,
         };
-        let material_pressure = |e: usize| mean_stress(self.model.elastic_material.as_ref(), &self.model.mesh, e, x);
+        let material_pressure =
+            |e: usize| mean_stress(self.model.elastic_material.as_ref(), &self.model.mesh, e, x);
         (0..self.model.mesh.num_tets())
             .map(|e| match (&constrained, self.model.method) {
                 (None, _) => material_pressure(e),
@@ -211,7 +221,9 @@ impl Simulation {
             ..Energies::default()
         };
         for term in &self.model.terms {
-            let e = term.evaluate(&state.positions, 1.0, None, None).unwrap_or(f64::NAN);
+            let e = term
+                .evaluate(&state.positions, 1.0, None, None)
+                .unwrap_or(f64::NAN);
             if term.is_external() {
                 energies.external += e;
             } else {
@@ -230,11 +242,13 @@ impl Simulation {
     ) -> Result<RunSummary, SimulationFailure> {
         let start = Instant::now();
         let mut reports = Vec::new();
-        let fail = |error: SolverError, step: usize, state: &State, reports: &Vec<StepReport>| SimulationFailure {
-            error,
-            failed_step: step,
-            last_state: state.clone(),
-            reports: reports.clone(),
+        let fail = |error: SolverError, step: usize, state: &State, reports: &Vec<StepReport>| {
+            SimulationFailure {
+                error,
+                failed_step: step,
+                last_state: state.clone(),
+                reports: reports.clone(),
+            }
         };
         let (steps, dt) = match stepping {
             Stepping::QuasiStatic { steps } => (steps, None),
@@ -253,7 +267,9 @@ impl Simulation {
             let solver = match self.model.strategy {
                 Strategy::Minimize => Solver::Newton(Newton::new(&system)?),
                 Strategy::Dual => Solver::Dual(Newton::new(&system)?),
-                Strategy::SaddleDirect | Strategy::SaddleSchur => Solver::Saddle(SaddleNewton::new(&system)?),
+                Strategy::SaddleDirect | Strategy::SaddleSchur => {
+                    Solver::Saddle(SaddleNewton::new(&system)?)
+                }
             };
             Ok::<_, SolverError>((system, solver))
         })();
@@ -281,7 +297,11 @@ impl Simulation {
             }
             let target = StepTarget {
                 load,
-                prescribed: self.model.dofs.targets(self.model.mesh.positions(), fraction).collect(),
+                prescribed: self
+                    .model
+                    .dofs
+                    .targets(self.model.mesh.positions(), fraction)
+                    .collect(),
                 force_tolerance,
             };
             let mut x = self.state.positions.clone();
@@ -292,9 +312,15 @@ impl Simulation {
                 ..StepReport::default()
             };
             let result = match &mut solver {
-                Solver::Newton(newton) => newton.minimize(&mut system, &mut x, &target, &mut report),
-                Solver::Saddle(saddle) => saddle.solve(&mut system, &mut x, &mut p, &target, &mut report),
-                Solver::Dual(newton) => dual::solve(newton, &mut system, &mut x, &mut p, &target, &mut report),
+                Solver::Newton(newton) => {
+                    newton.minimize(&mut system, &mut x, &target, &mut report)
+                }
+                Solver::Saddle(saddle) => {
+                    saddle.solve(&mut system, &mut x, &mut p, &target, &mut report)
+                }
+                Solver::Dual(newton) => {
+                    dual::solve(newton, &mut system, &mut x, &mut p, &target, &mut report)
+                }
             };
             report.wall_time = step_start.elapsed();
             reports.push(report);
@@ -348,7 +374,11 @@ fn mean_stress(material: &dyn Hyperelastic, mesh: &TetMesh, e: usize, x: &[Vec3]
 }
 
 fn check_settings(s: &Settings) -> Result<(), SolverError> {
-    let bad = |what: &str| Err(SolverError::InvalidProblem(format!("invalid solver setting: {what}")));
+    let bad = |what: &str| {
+        Err(SolverError::InvalidProblem(format!(
+            "invalid solver setting: {what}"
+        )))
+    };
     if s.max_iterations == 0 {
         return bad("max_iterations must be at least 1");
     }
@@ -363,11 +393,15 @@ fn check_settings(s: &Settings) -> Result<(), SolverError> {
 
 fn check_stepping(stepping: Stepping) -> Result<(), SolverError> {
     match stepping {
-        Stepping::QuasiStatic { steps: 0 } => Err(SolverError::InvalidProblem("steps must be at least 1".into())),
-        Stepping::ImplicitEuler { frames: 0, .. } => Err(SolverError::InvalidProblem("frames must be at least 1".into())),
-        Stepping::ImplicitEuler { dt, .. } if !(dt > 0.0 && dt.is_finite()) => {
-            Err(SolverError::InvalidProblem(format!("dt = {dt} must be positive")))
-        }
+        Stepping::QuasiStatic { steps: 0 } => Err(SolverError::InvalidProblem(
+            "steps must be at least 1".into(),
+        )),
+        Stepping::ImplicitEuler { frames: 0, .. } => Err(SolverError::InvalidProblem(
+            "frames must be at least 1".into(),
+        )),
+        Stepping::ImplicitEuler { dt, .. } if !(dt > 0.0 && dt.is_finite()) => Err(
+            SolverError::InvalidProblem(format!("dt = {dt} must be positive")),
+        ),
         _ => Ok(()),
     }
 }

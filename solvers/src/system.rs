@@ -17,6 +17,8 @@ pub struct Evaluation {
     pub energy: f64,
     /// Full-space gradient (length `3n`).
     pub gradient: Vec<f64>,
+    /// Sum of the terms' absolute energies: the scale of the rounding error of `energy`.
+    pub magnitude: f64,
 }
 
 /// A model with its inertia (in dynamics), layouts and buffers.
@@ -39,7 +41,11 @@ pub struct System<'m> {
 
 impl<'m> System<'m> {
     /// Layouts for `model`, with the inertia term of implicit Euler if given.
-    pub fn new(model: &'m Model, inertia: Option<Inertia>, settings: Settings) -> Result<Self, SolverError> {
+    pub fn new(
+        model: &'m Model,
+        inertia: Option<Inertia>,
+        settings: Settings,
+    ) -> Result<Self, SolverError> {
         let mut pairs = Vec::new();
         let mut offsets = vec![0];
         let mut push = |p: Vec<(usize, usize)>| {
@@ -55,14 +61,20 @@ impl<'m> System<'m> {
         if let Some(i) = &inertia {
             push(i.hessian_pattern());
         }
-        let saddle = matches!(model.strategy, Strategy::SaddleDirect | Strategy::SaddleSchur);
+        let saddle = matches!(
+            model.strategy,
+            Strategy::SaddleDirect | Strategy::SaddleSchur
+        );
         let (jacobian, jacobian_len) = match &model.constraints {
             Some(c) => {
                 if saddle {
                     push(c.geometric_stiffness_pattern());
                 }
                 let g = c.jacobian_pattern();
-                (Some(Layout::jacobian(&g, c.num_constraints(), &model.dofs)?), g.len())
+                (
+                    Some(Layout::jacobian(&g, c.num_constraints(), &model.dofs)?),
+                    g.len(),
+                )
             }
             None => (None, 0),
         };
@@ -92,16 +104,27 @@ impl<'m> System<'m> {
     }
 
     /// Energy (and gradient) of all terms at `x`, without touching the Hessian.
-    pub fn energy(&mut self, x: &[Vec3], load: f64, with_gradient: bool) -> Result<Evaluation, SolverError> {
+    pub fn energy(
+        &mut self,
+        x: &[Vec3],
+        load: f64,
+        with_gradient: bool,
+    ) -> Result<Evaluation, SolverError> {
         let start = Instant::now();
         let mut gradient = vec![0.0; if with_gradient { 3 * x.len() } else { 0 }];
-        let mut energy = 0.0;
+        let (mut energy, mut magnitude) = (0.0, 0.0);
         for term in self.terms() {
             let g = with_gradient.then_some(gradient.as_mut_slice());
-            energy += term.evaluate(x, load, g, None)?;
+            let e = term.evaluate(x, load, g, None)?;
+            energy += e;
+            magnitude += e.abs();
         }
         self.assembly_time += start.elapsed();
-        Ok(Evaluation { energy, gradient })
+        Ok(Evaluation {
+            energy,
+            gradient,
+            magnitude,
+        })
     }
 
     /// Energy, gradient and Hessian values of all terms at `x`; with `multipliers`, also
@@ -117,9 +140,13 @@ impl<'m> System<'m> {
         let mut values = std::mem::take(&mut self.hessian_values);
         let result = self.fill(x, load, multipliers, &mut gradient, &mut values);
         self.hessian_values = values;
-        let energy = result?;
+        let (energy, magnitude) = result?;
         self.assembly_time += start.elapsed();
-        Ok(Evaluation { energy, gradient })
+        Ok(Evaluation {
+            energy,
+            gradient,
+            magnitude,
+        })
     }
 
     fn fill(
@@ -129,20 +156,22 @@ impl<'m> System<'m> {
         multipliers: Option<&[f64]>,
         gradient: &mut [f64],
         values: &mut [f64],
-    ) -> Result<f64, SolverError> {
-        let mut energy = 0.0;
+    ) -> Result<(f64, f64), SolverError> {
+        let (mut energy, mut magnitude) = (0.0, 0.0);
         let mut rest = values;
         for (block, term) in self.terms().enumerate() {
             let len = self.offsets[block + 1] - self.offsets[block];
             let (mine, tail) = rest.split_at_mut(len);
             rest = tail;
-            energy += term.evaluate(x, load, Some(&mut *gradient), Some(mine))?;
+            let e = term.evaluate(x, load, Some(&mut *gradient), Some(mine))?;
+            energy += e;
+            magnitude += e.abs();
         }
         if let (Some(c), Some(p)) = (&self.model.constraints, multipliers) {
             c.geometric_stiffness_values(x, p, rest)?;
             c.jacobian_values(x, &mut self.jacobian_values)?;
         }
-        Ok(energy)
+        Ok((energy, magnitude))
     }
 
     /// Whether `x` lies in the domain of every term and constraint.

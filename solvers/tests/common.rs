@@ -40,5 +40,8 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
 pub fn end_deflection(mesh: &TetMesh, x: &[Vec3]) -> f64 {
     let length = mesh.bounding_box().1.x;
     let end = plane(mesh, 0, length);
-    end.iter().map(|&v| mesh.positions()[v].y - x[v].y).sum::<f64>() / end.len() as f64
+    end.iter()
+        .map(|&v| mesh.positions()[v].y - x[v].y)
+        .sum::<f64>()
+        / end.len() as f64
 }

@@ -19,8 +19,16 @@ fn solve(problem: Problem) -> Vec<Vec3> {
 
 /// Largest displacement difference relative to the largest displacement.
 fn relative_difference(rest: &[Vec3], a: &[Vec3], b: &[Vec3]) -> f64 {
-    let scale = rest.iter().zip(a).map(|(r, x)| (x - r).norm()).fold(0.0, f64::max);
-    let diff = a.iter().zip(b).map(|(x, y)| (x - y).norm()).fold(0.0, f64::max);
+    let scale = rest
+        .iter()
+        .zip(a)
+        .map(|(r, x)| (x - r).norm())
+        .fold(0.0, f64::max);
+    let diff = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).norm())
+        .fold(0.0, f64::max);
     diff / scale
 }
 

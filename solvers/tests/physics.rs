@@ -6,7 +6,9 @@ mod common;
 use common::{beam, cantilever, end_deflection, plane};
 use isochor_energies::Lame;
 use isochor_mesh::{generate::box_grid, Vec3};
-use isochor_solvers::{Dirichlet, Load, Material, Method, Motion, Problem, Settings, Simulation, Stepping};
+use isochor_solvers::{
+    Dirichlet, Load, Material, Method, Motion, Problem, Settings, Simulation, Stepping,
+};
 
 /// Uniaxial dead traction on a box: linear tets reproduce the homogeneous state
 /// `F = diag(s, t, t)` whose neo-Hookean stress satisfies `P_xx = T`, `P_yy = P_zz = 0`.
@@ -29,7 +31,10 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
     let end_faces: Vec<[usize; 3]> = boundary
         .triangles()
         .iter()
-        .filter(|f| f.iter().all(|&v| (mesh.positions()[v].x - length).abs() < 1e-12))
+        .filter(|f| {
+            f.iter()
+                .all(|&v| (mesh.positions()[v].x - length).abs() < 1e-12)
+        })
         .copied()
         .collect();
     let material = Material::from_young_poisson(1e5, 0.3, 1000.0).unwrap();
@@ -56,7 +61,10 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
     let Lame { mu, lambda } = material.lame().unwrap();
     let p = |s: f64, t: f64| {
         let j = s * t * t;
-        (mu * (s - 1.0 / s) + lambda * j.ln() / s, mu * (t - 1.0 / t) + lambda * j.ln() / t)
+        (
+            mu * (s - 1.0 / s) + lambda * j.ln() / s,
+            mu * (t - 1.0 / t) + lambda * j.ln() / t,
+        )
     };
     let (mut s, mut t) = (1.0, 1.0);
     for _ in 0..100 {
@@ -65,8 +73,12 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         let (a, b) = p(s, t);
         let (a_s, b_s) = p(s + h, t);
         let (a_t, b_t) = p(s, t + h);
-        let jac = nalgebra::Matrix2::new((a_s - a) / h, (a_t - a) / h, (b_s - b) / h, (b_t - b) / h);
-        let step = jac.lu().solve(&nalgebra::Vector2::new(traction - a, -b)).unwrap();
+        let jac =
+            nalgebra::Matrix2::new((a_s - a) / h, (a_t - a) / h, (b_s - b) / h, (b_t - b) / h);
+        let step = jac
+            .lu()
+            .solve(&nalgebra::Vector2::new(traction - a, -b))
+            .unwrap();
         s += step[0];
         t += step[1];
     }
@@ -101,29 +113,42 @@ fn slender_cantilever_matches_euler_bernoulli() {
         })
         .collect();
     let extrapolated = (64.0 * ratios[2] - 36.0 * ratios[1]) / 28.0;
-    println!("deflection / Euler-Bernoulli at res 4, 6, 8: {ratios:?}, extrapolated {extrapolated:.4}");
-    assert!(ratios.windows(2).all(|w| w[0] < w[1] && w[1] < 1.0), "{ratios:?}");
+    println!(
+        "deflection / Euler-Bernoulli at res 4, 6, 8: {ratios:?}, extrapolated {extrapolated:.4}"
+    );
+    assert!(
+        ratios.windows(2).all(|w| w[0] < w[1] && w[1] < 1.0),
+        "{ratios:?}"
+    );
     assert!(ratios[2] > 0.9, "{ratios:?}");
-    assert!((extrapolated - 1.0).abs() < 0.05, "extrapolated ratio {extrapolated}");
+    assert!(
+        (extrapolated - 1.0).abs() < 0.05,
+        "extrapolated ratio {extrapolated}"
+    );
 }
 
 /// At nu = 0.5 the nodal constraints have zero compliance; their sum is the total volume
 /// change, which therefore vanishes to solver tolerance.
 #[test]
 fn mixed_p1_keeps_the_volume_at_nu_one_half() {
-    let mut sim = Simulation::new(cantilever(2, Method::MixedP1, 0.5), Settings::default()).unwrap();
+    let mut sim =
+        Simulation::new(cantilever(2, Method::MixedP1, 0.5), Settings::default()).unwrap();
     let summary = sim.run(Stepping::QuasiStatic { steps: 2 }, |_| {}).unwrap();
     let mesh = sim.mesh();
     let change = mesh.total_volume_at(&summary.final_state.positions) / mesh.rest_volume() - 1.0;
     let deflection = end_deflection(mesh, &summary.final_state.positions);
     println!("volume change {change:e}, deflection {deflection}");
     assert!(change.abs() < 1e-8, "volume change {change:e}");
-    assert!(deflection > 0.01, "the beam must bend without locking: {deflection}");
+    assert!(
+        deflection > 0.01,
+        "the beam must bend without locking: {deflection}"
+    );
 }
 
 #[test]
 fn condensed_refuses_nu_one_half() {
-    let err = Simulation::new(cantilever(2, Method::Condensed, 0.5), Settings::default()).unwrap_err();
+    let err =
+        Simulation::new(cantilever(2, Method::Condensed, 0.5), Settings::default()).unwrap_err();
     assert!(err.to_string().contains("condensed"), "{err}");
 }
 
@@ -137,12 +162,17 @@ fn non_convergence_is_an_error_that_keeps_the_last_state() {
     let problem = cantilever(2, Method::Standard, 0.4999);
     let rest = problem.mesh.positions().to_vec();
     let mut sim = Simulation::new(problem, settings).unwrap();
-    let failure = sim.run(Stepping::QuasiStatic { steps: 1 }, |_| {}).unwrap_err();
+    let failure = sim
+        .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
+        .unwrap_err();
     assert_eq!(failure.failed_step, 1);
     assert_eq!(failure.last_state.positions, rest);
     assert_eq!(failure.reports.len(), 1);
     assert_eq!(failure.reports[0].iterations.len(), 2);
-    assert!(failure.to_string().contains("did not converge"), "{failure}");
+    assert!(
+        failure.to_string().contains("did not converge"),
+        "{failure}"
+    );
     assert_eq!(sim.state().positions, rest);
 }
 
@@ -158,11 +188,17 @@ fn free_fall_follows_the_discrete_implicit_euler_trajectory() {
         problem.loads = vec![Load::Gravity(g)];
         let rest = problem.mesh.positions().to_vec();
         let mut sim = Simulation::new(problem, Settings::default()).unwrap();
-        let summary = sim.run(Stepping::ImplicitEuler { dt, frames }, |_| {}).unwrap();
+        let summary = sim
+            .run(Stepping::ImplicitEuler { dt, frames }, |_| {})
+            .unwrap();
         let n = frames as f64;
         let drop = g * dt * dt * n * (n + 1.0) / 2.0;
         for (r, x) in rest.iter().zip(&summary.final_state.positions) {
-            assert!((x - (r + drop)).norm() < 1e-9, "{method}: {x:?} vs {:?}", r + drop);
+            assert!(
+                (x - (r + drop)).norm() < 1e-9,
+                "{method}: {x:?} vs {:?}",
+                r + drop
+            );
         }
     }
 }

@@ -39,9 +39,16 @@ fn methods_agree_as_the_mesh_is_refined() {
         let spread = (max - min) / max;
         println!(
             "{res} | {} | spread {spread:.3}",
-            deflections.iter().map(|d| format!("{:.2} mm", 1e3 * d)).collect::<Vec<_>>().join(" | ")
+            deflections
+                .iter()
+                .map(|d| format!("{:.2} mm", 1e3 * d))
+                .collect::<Vec<_>>()
+                .join(" | ")
         );
         spreads.push(spread);
     }
-    assert!(spreads.windows(2).all(|w| w[1] < w[0]), "spreads {spreads:?} must shrink");
+    assert!(
+        spreads.windows(2).all(|w| w[1] < w[0]),
+        "spreads {spreads:?} must shrink"
+    );
 }

@@ -12,7 +12,11 @@ pub fn near_identity(spread: f64) -> impl Strategy<Value = Matrix3<f64>> {
 /// Random `F` with `det F` in `[j_min, j_max]`: a random rotation-free shape of unit
 /// determinant scaled by `J^(1/3)` with `J` drawn log-uniformly; with `inverted`, one
 /// axis is reflected so that `det F = -J`.
-pub fn with_determinant(j_min: f64, j_max: f64, inverted: bool) -> impl Strategy<Value = Matrix3<f64>> {
+pub fn with_determinant(
+    j_min: f64,
+    j_max: f64,
+    inverted: bool,
+) -> impl Strategy<Value = Matrix3<f64>> {
     (
         proptest::array::uniform9(-0.4..0.4f64),
         j_min.ln()..j_max.ln(),
@@ -64,9 +68,8 @@ pub fn rest_triangle() -> impl Strategy<Value = [Vector3<f64>; 3]> {
         "rest triangle must be well shaped",
         |(d, log_scale)| {
             let scale = 10f64.powf(log_scale);
-            let x: [Vector3<f64>; 3] = std::array::from_fn(|a| {
-                Vector3::new(d[3 * a], d[3 * a + 1], d[3 * a + 2]) * scale
-            });
+            let x: [Vector3<f64>; 3] =
+                std::array::from_fn(|a| Vector3::new(d[3 * a], d[3 * a + 1], d[3 * a + 2]) * scale);
             let area = 0.5 * (x[1] - x[0]).cross(&(x[2] - x[0])).norm();
             let l = max_edge(&x);
             (area >= 0.1 * l * l).then_some(x)

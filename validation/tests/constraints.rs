@@ -86,10 +86,13 @@ fn test_zones(mesh: &TetMesh) -> Zones {
     Zones::from_sets(vec![all, left, even])
 }
 
+/// An independent computation of a constraint set's values.
+type Reference = Box<dyn Fn(&TetMesh, &[Vec3]) -> DVector<f64>>;
+
 /// A constraint set under test with an independent computation of its values.
 struct Case {
     set: Box<dyn ConstraintSet>,
-    reference: Box<dyn Fn(&TetMesh, &[Vec3]) -> DVector<f64>>,
+    reference: Reference,
 }
 
 /// Every constraint type on `mesh`: P0 and P1 with both measures, and zonal with

@@ -7,11 +7,20 @@
 //!
 //! The order is found by AMD on the compressed graph whose vertices are the `n` DOFs,
 //! each anchored constraint merged into its anchor, and then expanded.
+//!
+//! A constraint's pivot is `-g_E^T S_E^-1 g_E` over the DOFs `E` of its row eliminated
+//! before it. The entries of a nodal volume constraint on its own node cancel for
+//! interior nodes (moving the centre of a closed star does not change its volume), so
+//! the pivot is exactly zero when AMD eliminates the node before all its neighbours.
+//! Such a constraint is therefore delayed until the DOFs of one other node of its row
+//! are eliminated; "nodes" are the supervariables of `G` (DOFs whose columns of `G`
+//! have the same rows), so nothing about the mesh is assumed.
 
 use super::{LinearError, SparsityPattern, Triangle};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 use faer::sparse::SymbolicSparseColMatRef;
+use std::collections::HashMap;
 
 /// Forward permutation of the `n + m` KKT unknowns: `fwd[new] = old`, with DOFs
 /// `0..n` and constraint `i` numbered `n + i`.
@@ -61,22 +70,51 @@ pub(crate) fn anchored_ordering(
         amd::Control::default(),
         MemStack::new(&mut mem),
     )?;
-    // Expand: each DOF followed by the constraints anchored to it, free rows last.
+    // Expand: each DOF followed by the constraints placed after it, free rows last.
+    let supervariable = supervariables(g);
+    let mut row_dofs: Vec<Vec<usize>> = vec![Vec::new(); m];
+    for j in 0..g.ncols() {
+        for q in g.col_range(j) {
+            row_dofs[g.row_idx()[q]].push(j);
+        }
+    }
     let mut anchored: Vec<Vec<usize>> = vec![Vec::new(); n];
     let mut free = Vec::new();
     for (i, a) in anchors.iter().enumerate() {
         match a {
-            Some(d) => anchored[*d].push(n + i),
+            Some(a) => {
+                // Per other node of the row: the position where its last DOF is eliminated.
+                let mut done: HashMap<usize, usize> = HashMap::new();
+                for &j in &row_dofs[i] {
+                    if supervariable[j] != supervariable[*a] {
+                        let t = done.entry(supervariable[j]).or_insert(0);
+                        *t = (*t).max(inv[j]);
+                    }
+                }
+                let after = done.values().min().map_or(inv[*a], |&t| t.max(inv[*a]));
+                anchored[fwd[after]].push(n + i);
+            }
             None => free.push(n + i),
         }
     }
     let mut order = Vec::with_capacity(n + m);
-    for d in fwd {
+    for &d in &fwd {
         order.push(d);
         order.extend_from_slice(&anchored[d]);
     }
     order.extend(free);
     Ok(order)
+}
+
+/// Group id of every column of `g`: columns with the same row indices share one.
+fn supervariables(g: SymbolicSparseColMatRef<'_, usize>) -> Vec<usize> {
+    let mut ids: HashMap<&[usize], usize> = HashMap::new();
+    (0..g.ncols())
+        .map(|j| {
+            let next = ids.len();
+            *ids.entry(&g.row_idx()[g.col_range(j)]).or_insert(next)
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -124,5 +162,29 @@ mod tests {
             anchored_ordering(k.symbolic(), g.symbolic(), &[Some(9), None, None]),
             Err(LinearError::BadAnchor { dof: 9, .. })
         ));
+    }
+
+    #[test]
+    fn a_constraint_waits_for_another_node_of_its_row() {
+        // DOFs {0, 1} form one node (same G columns), {2, 3} another.
+        let kp = [
+            (0, 0),
+            (1, 1),
+            (2, 2),
+            (3, 3),
+            (1, 0),
+            (0, 1),
+            (2, 1),
+            (1, 2),
+            (3, 2),
+            (2, 3),
+        ];
+        let k = SparsityPattern::new(4, 4, &kp, Triangle::Full).unwrap();
+        let gp = [(0, 0), (0, 1), (0, 2), (0, 3), (1, 2), (1, 3)];
+        let g = SparsityPattern::new(2, 4, &gp, Triangle::Full).unwrap();
+        let order = anchored_ordering(k.symbolic(), g.symbolic(), &[Some(1), Some(3)]).unwrap();
+        let pos = |v: usize| order.iter().position(|&x| x == v).unwrap();
+        assert!((0..4).all(|d| pos(4) > pos(d)), "{order:?}");
+        assert!(pos(5) > pos(2) && pos(5) > pos(3), "{order:?}");
     }
 }

@@ -32,7 +32,11 @@ pub struct AugmentedConstraints {
 
 impl AugmentedConstraints {
     /// `constraints` with diagonal `compliance` `C` and stiffness `R`; multipliers start at 0.
-    pub fn new(constraints: Arc<dyn ConstraintSet>, compliance: Vec<f64>, stiffness: Vec<f64>) -> Self {
+    pub fn new(
+        constraints: Arc<dyn ConstraintSet>,
+        compliance: Vec<f64>,
+        stiffness: Vec<f64>,
+    ) -> Self {
         let m = constraints.num_constraints();
         let pattern = constraints.jacobian_pattern();
         let mut row_dofs: Vec<Vec<usize>> = vec![Vec::new(); m];
@@ -113,7 +117,10 @@ impl EnergyTerm for AugmentedConstraints {
         let mut pattern: Vec<(usize, usize)> = self
             .row_dofs
             .iter()
-            .flat_map(|dofs| dofs.iter().flat_map(move |&a| dofs.iter().map(move |&b| (a, b))))
+            .flat_map(|dofs| {
+                dofs.iter()
+                    .flat_map(move |&a| dofs.iter().map(move |&b| (a, b)))
+            })
             .collect();
         pattern.extend(self.constraints.geometric_stiffness_pattern());
         pattern
@@ -163,7 +170,8 @@ impl EnergyTerm for AugmentedConstraints {
                 }
                 debug_assert_eq!(values.len(), dofs.len());
             }
-            self.constraints.geometric_stiffness_values(x, &q, geometric)?;
+            self.constraints
+                .geometric_stiffness_values(x, &q, geometric)?;
         }
         Ok(energy)
     }

@@ -26,8 +26,9 @@ impl EpidermisTerm {
             .iter()
             .enumerate()
             .map(|(f, t)| {
-                RestTriangle::new(&t.map(|i| x[i]))
-                    .ok_or_else(|| SolverError::InvalidProblem(format!("boundary face {f} is degenerate")))
+                RestTriangle::new(&t.map(|i| x[i])).ok_or_else(|| {
+                    SolverError::InvalidProblem(format!("boundary face {f} is degenerate"))
+                })
             })
             .collect::<Result<_, _>>()?;
         Ok(EpidermisTerm { faces, rest, skin })
@@ -55,7 +56,10 @@ impl EnergyTerm for EpidermisTerm {
             Some(out) => {
                 let terms: Vec<_> = (0..self.faces.len())
                     .into_par_iter()
-                    .map(|f| self.skin.energy_gradient_hessian(&corners(f), &self.rest[f]))
+                    .map(|f| {
+                        self.skin
+                            .energy_gradient_hessian(&corners(f), &self.rest[f])
+                    })
                     .collect();
                 for (block, t) in out.chunks_mut(81).zip(&terms) {
                     block.copy_from_slice(t.hessian.as_slice());
@@ -70,7 +74,11 @@ impl EnergyTerm for EpidermisTerm {
             None => {
                 if let Some(g) = gradient {
                     for (f, face) in self.faces.iter().enumerate() {
-                        scatter(face, self.skin.gradient(&corners(f), &self.rest[f]).as_slice(), g);
+                        scatter(
+                            face,
+                            self.skin.gradient(&corners(f), &self.rest[f]).as_slice(),
+                            g,
+                        );
                     }
                 }
                 (0..self.faces.len())

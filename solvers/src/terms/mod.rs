@@ -58,7 +58,9 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
 
 /// Dense `(dof, dof)` pattern of the blocks of an element with the given vertices, in the
 /// column-major order of nalgebra's element matrices.
-pub(crate) fn block_pattern<const V: usize>(vertices: &[usize; V]) -> impl Iterator<Item = (usize, usize)> + '_ {
+pub(crate) fn block_pattern<const V: usize>(
+    vertices: &[usize; V],
+) -> impl Iterator<Item = (usize, usize)> + '_ {
     let dof = move |local: usize| 3 * vertices[local / 3] + local % 3;
     (0..3 * V).flat_map(move |c| (0..3 * V).map(move |r| (dof(r), dof(c))))
 }

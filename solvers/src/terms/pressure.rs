@@ -65,7 +65,9 @@ impl EnergyTerm for FollowerPressure {
                 for (i, j, w) in pairs {
                     let m = -skew(&w) * s;
                     block.fixed_view_mut::<3, 3>(3 * i, 3 * j).copy_from(&m);
-                    block.fixed_view_mut::<3, 3>(3 * j, 3 * i).copy_from(&m.transpose());
+                    block
+                        .fixed_view_mut::<3, 3>(3 * j, 3 * i)
+                        .copy_from(&m.transpose());
                 }
                 h[81 * f..81 * (f + 1)].copy_from_slice(block.as_slice());
             }

@@ -17,7 +17,10 @@ impl DeadTraction {
         let forces = faces
             .iter()
             .flat_map(|f| {
-                let area = 0.5 * (rest[f[1]] - rest[f[0]]).cross(&(rest[f[2]] - rest[f[0]])).norm();
+                let area = 0.5
+                    * (rest[f[1]] - rest[f[0]])
+                        .cross(&(rest[f[2]] - rest[f[0]]))
+                        .norm();
                 f.map(|v| (v, traction * (area / 3.0)))
             })
             .collect();
