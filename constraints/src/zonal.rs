@@ -4,7 +4,7 @@
 use crate::tets::{check_len, inverse_bulk_modulus, MeasuredTets};
 use crate::volume::tet_volume;
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
-use isochor_mesh::{TetMesh, Vec3, Zones};
+use isochor_mesh::{BoundarySurface, TetMesh, Vec3, Zones};
 use rayon::prelude::*;
 
 /// One constraint per zone `j`: `c_j = sum_{e in zone j} (v_e - V_e)` (eq. 6), hard by
@@ -27,15 +27,16 @@ pub struct ZonalConstraints {
     covered: Vec<usize>,
     /// The zones containing each tet of the mesh (empty outside every zone).
     zones_of_tet: Vec<Vec<usize>>,
-    /// Outward boundary triangles of every zone.
-    boundary_faces: Vec<Vec<[usize; 3]>>,
+    /// Outward boundary surface of every zone.
+    boundaries: Vec<BoundarySurface>,
 }
 
 impl ZonalConstraints {
     /// Hard zonal constraints on `mesh`, one per zone of `zones`.
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] if there are no zones,
-    /// [`ConstraintError::InvalidZone`] for an empty zone or a tet index outside the mesh.
+    /// [`ConstraintError::InvalidZone`] for an empty zone, a tet index outside the mesh, or a
+    /// face shared by more than two of the zone's tets.
     pub fn new(mesh: &TetMesh, zones: &Zones) -> Result<Self, ConstraintError> {
         if zones.is_empty() {
             return Err(ConstraintError::InvalidParameter {
@@ -70,10 +71,16 @@ impl ZonalConstraints {
             .iter()
             .map(|zone| zone.iter().map(|&e| mesh.rest_volumes()[e]).sum())
             .collect();
-        let boundary_faces = zones
+        let boundaries = zones
             .iter()
-            .map(|zone| boundary_faces(mesh.tets(), zone))
-            .collect();
+            .enumerate()
+            .map(|(z, zone)| {
+                BoundarySurface::of_tets(mesh, zone).map_err(|err| ConstraintError::InvalidZone {
+                    zone: z,
+                    reason: err.to_string(),
+                })
+            })
+            .collect::<Result<_, _>>()?;
         Ok(ZonalConstraints {
             tets: MeasuredTets::new(mesh, Measure::Linear),
             compliance: vec![0.0; zones.len()],
@@ -84,7 +91,7 @@ impl ZonalConstraints {
             rest_zone_volumes,
             entries,
             zones_of_tet,
-            boundary_faces,
+            boundaries,
         })
     }
 
@@ -104,14 +111,13 @@ impl ZonalConstraints {
         &self.rest_zone_volumes
     }
 
-    /// Outward boundary triangles of zone `z`: the faces of its tets not shared by two of
-    /// its tets, oriented by the tet's vertex order so that normals point out of the zone.
+    /// Outward boundary surface of zone `z`: the faces of its tets not shared by two of its
+    /// tets ([`BoundarySurface::of_tets`]).
     ///
     /// Errors: [`ConstraintError::InvalidZone`] if `z` is not a zone.
-    pub fn boundary_faces(&self, z: usize) -> Result<&[[usize; 3]], ConstraintError> {
-        self.boundary_faces
+    pub fn boundary(&self, z: usize) -> Result<&BoundarySurface, ConstraintError> {
+        self.boundaries
             .get(z)
-            .map(Vec::as_slice)
             .ok_or_else(|| no_such_zone(z, self.zones.len()))
     }
 
@@ -137,11 +143,7 @@ impl ZonalConstraints {
     /// Errors: wrong length of `x`, or `z` not a zone.
     pub fn zone_boundary_volume(&self, z: usize, x: &[Vec3]) -> Result<f64, ConstraintError> {
         self.tets.check_positions(x)?;
-        Ok(self
-            .boundary_faces(z)?
-            .iter()
-            .map(|&[a, b, c]| x[a].dot(&x[b].cross(&x[c])) / 6.0)
-            .sum())
+        Ok(self.boundary(z)?.enclosed_volume(x))
     }
 
     /// The sum of the multipliers of the zones containing tet `e`.
@@ -232,32 +234,6 @@ fn no_such_zone(z: usize, zones: usize) -> ConstraintError {
     }
 }
 
-/// Faces of the tets of `zone` that are not shared by two of them, oriented outward.
-///
-/// For a positively oriented tet `[a, b, c, d]` the outward faces are `[b, c, d]`,
-/// `[a, d, c]`, `[a, b, d]` and `[a, c, b]`. Faces are matched by their sorted vertex
-/// triple; the result is sorted by that triple.
-fn boundary_faces(tets: &[[usize; 4]], zone: &[usize]) -> Vec<[usize; 3]> {
-    let mut faces: Vec<([usize; 3], [usize; 3])> = zone
-        .iter()
-        .flat_map(|&e| {
-            let [a, b, c, d] = tets[e];
-            [[b, c, d], [a, d, c], [a, b, d], [a, c, b]]
-        })
-        .map(|face| {
-            let mut key = face;
-            key.sort_unstable();
-            (key, face)
-        })
-        .collect();
-    faces.sort_unstable();
-    faces
-        .chunk_by(|f, g| f.0 == g.0)
-        .filter(|run| run.len() == 1)
-        .map(|run| run[0].1)
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -268,8 +244,8 @@ mod tests {
         let mesh = two_tets();
         let zones = Zones::from_sets(vec![vec![0, 1], vec![1]]);
         let set = ZonalConstraints::new(&mesh, &zones).unwrap();
-        assert_eq!(set.boundary_faces(0).unwrap().len(), 6);
-        assert_eq!(set.boundary_faces(1).unwrap().len(), 4);
+        assert_eq!(set.boundary(0).unwrap().len(), 6);
+        assert_eq!(set.boundary(1).unwrap().len(), 4);
         let x = moved(&mesh, 2, Vec3::new(0.2, 0.1, -0.3));
         for z in 0..2 {
             let by_tets = set.zone_volume(z, &x).unwrap();
@@ -304,7 +280,7 @@ mod tests {
         let e = err(vec![vec![0, 2]]).unwrap_err();
         assert!(e.to_string().contains("tet 2"), "{e}");
         let set = err(vec![vec![0]]).unwrap();
-        assert!(set.boundary_faces(1).is_err());
+        assert!(set.boundary(1).is_err());
         assert!(set.zone_volume(0, &mesh.positions()[..3]).is_err());
         assert!(set.with_bulk_modulus(-1.0).is_err());
     }

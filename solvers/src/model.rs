@@ -2,8 +2,7 @@
 //! loads it lists, the constraint set of a mixed or zonal method, the lumped masses.
 
 use crate::terms::{
-    AugmentedConstraints, DeadTraction, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure,
-    Gravity,
+    AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure,
 };
 use crate::{Dofs, Load, Method, Problem, SolverError, ZonalEnergy};
 use isochor_constraints::{
@@ -207,9 +206,9 @@ impl Model {
         }
         for load in loads {
             terms.push(match load {
-                Load::Gravity(g) => Box::new(Gravity::new(masses.clone(), g)),
+                Load::Gravity(g) => Box::new(DeadLoad::gravity(&masses, g)),
                 Load::Traction { faces, traction } => {
-                    Box::new(DeadTraction::new(mesh.positions(), &faces, traction))
+                    Box::new(DeadLoad::traction(mesh.positions(), &faces, traction))
                 }
                 Load::Pressure { faces, pressure } => {
                     Box::new(FollowerPressure::new(faces, pressure))

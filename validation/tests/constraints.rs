@@ -223,7 +223,7 @@ proptest! {
                 "zone {z}: {by_tets} by tets, {by_faces} by faces");
         }
         // The whole box has 2 (4 + 6 + 6) square boundary faces, two triangles each.
-        prop_assert_eq!(set.boundary_faces(0).expect("zone 0").len(), 2 * 2 * (6 + 4 + 6));
+        prop_assert_eq!(set.boundary(0).expect("zone 0").len(), 2 * 2 * (6 + 4 + 6));
     }
 }
 

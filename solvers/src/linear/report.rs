@@ -44,7 +44,7 @@ pub struct SolveReport {
     pub solve_time: Duration,
     /// Number of numeric factorizations performed for the latest system (retries count).
     pub factorizations: usize,
-    /// Stored entries of the factor `L`.
+    /// Stored entries of the `LL^T` or `LDL^T` factor `L` (from the symbolic analysis).
     pub factor_nnz: usize,
     /// Shift added to the diagonal of `K` (absolute).
     pub shift: f64,

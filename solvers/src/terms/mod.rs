@@ -3,22 +3,20 @@
 //! line searches use to back off (the "Form" contract of polyfem).
 
 mod augmented;
+mod dead_load;
 mod elastic;
 mod epidermis;
 
-mod gravity;
 mod inertia;
 mod pressure;
-mod traction;
 
 pub use augmented::AugmentedConstraints;
+pub use dead_load::DeadLoad;
 pub use elastic::Elastic;
 pub use epidermis::EpidermisTerm;
 
-pub use gravity::Gravity;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
-pub use traction::DeadTraction;
 
 use crate::SolverError;
 use isochor_mesh::Vec3;

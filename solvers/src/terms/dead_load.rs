@@ -1,19 +1,33 @@
-//! Dead traction: a constant force per unit rest area on boundary faces, lumped equally to
-//! the three vertices of each face; potential `-load sum_i f_i . x_i`.
+//! Dead loads: constant nodal forces `f_i`, ramped by the load parameter, with potential
+//! `-load sum_i f_i . x_i`. Gravity lumps `m_i g` to the vertices; a dead traction lumps
+//! `t A_f / 3` to the three vertices of each loaded face.
 
 use super::EnergyTerm;
 use crate::SolverError;
 use isochor_mesh::Vec3;
 
-/// Dead traction on a set of faces, stored as the equivalent nodal forces.
+/// Constant nodal forces.
 #[derive(Debug, Clone)]
-pub struct DeadTraction {
+pub struct DeadLoad {
+    name: &'static str,
     forces: Vec<(usize, Vec3)>,
 }
 
-impl DeadTraction {
-    /// Traction `traction` (force per rest area) on `faces` at rest positions `rest`.
-    pub fn new(rest: &[Vec3], faces: &[[usize; 3]], traction: Vec3) -> Self {
+impl DeadLoad {
+    /// Gravity `acceleration` acting on vertices of the given lumped `masses`.
+    pub fn gravity(masses: &[f64], acceleration: Vec3) -> Self {
+        DeadLoad {
+            name: "gravity",
+            forces: masses
+                .iter()
+                .enumerate()
+                .map(|(i, m)| (i, acceleration * *m))
+                .collect(),
+        }
+    }
+
+    /// Traction `traction` (force per unit rest area) on `faces` at rest positions `rest`.
+    pub fn traction(rest: &[Vec3], faces: &[[usize; 3]], traction: Vec3) -> Self {
         let forces = faces
             .iter()
             .flat_map(|f| {
@@ -24,7 +38,10 @@ impl DeadTraction {
                 f.map(|v| (v, traction * (area / 3.0)))
             })
             .collect();
-        DeadTraction { forces }
+        DeadLoad {
+            name: "traction",
+            forces,
+        }
     }
 
     /// Total force at full load.
@@ -33,9 +50,9 @@ impl DeadTraction {
     }
 }
 
-impl EnergyTerm for DeadTraction {
+impl EnergyTerm for DeadLoad {
     fn name(&self) -> &'static str {
-        "traction"
+        self.name
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
