@@ -38,11 +38,15 @@ enum Linear {
     Schur(Box<Schur>),
     /// Jacobi-preconditioned MINRES on the whole saddle-point operator (sec. 8 of Francu et
     /// al. 2021), keeping the latest matrices for the solves.
-    Iterative {
-        options: IterativeOptions,
-        k: SparseColMat<usize, f64>,
-        g: SparseColMat<usize, f64>,
-    },
+    Iterative(Box<Iterative>),
+}
+
+/// MINRES options and the latest `K` and `G`.
+#[derive(Debug)]
+struct Iterative {
+    options: IterativeOptions,
+    k: SparseColMat<usize, f64>,
+    g: SparseColMat<usize, f64>,
 }
 
 /// The Schur complement solve of the zonal KKT system: `K` factorized by Cholesky, the few
@@ -111,14 +115,14 @@ impl SaddleNewton {
             ) => {
                 let empty =
                     |r, c| SparseColMat::try_new_from_triplets(r, c, &[]).expect("empty matrix");
-                Linear::Iterative {
+                Linear::Iterative(Box::new(Iterative {
                     options: IterativeOptions {
                         tolerance,
                         max_iterations,
                     },
                     k: empty(0, 0),
                     g: empty(0, 0),
-                }
+                }))
             }
             (_, Strategy::SaddleSchur) => Linear::Schur(Box::new(Schur {
                 cholesky: CholeskySolver::new(system.hessian.pattern().symbolic())
@@ -388,9 +392,9 @@ impl SaddleNewton {
                 schur.schur = s;
                 shift
             }
-            Linear::Iterative { k: kk, g: gg, .. } => {
-                *kk = k;
-                *gg = g;
+            Linear::Iterative(state) => {
+                state.k = k;
+                state.g = g;
                 0.0
             }
         };
@@ -438,7 +442,8 @@ impl SaddleNewton {
                 let dx = y - &schur.z * &dp;
                 (dx.as_slice().to_vec(), dp.as_slice().to_vec())
             }
-            Linear::Iterative { options, k, g } => {
+            Linear::Iterative(state) => {
+                let Iterative { options, k, g } = state.as_ref();
                 let c = self.compliance.as_ref().map(|c| c.as_ref());
                 let c_op = c.as_ref().map(|c| c as &dyn LinearOperator);
                 let k_op = SymmetricLower(k.as_ref());

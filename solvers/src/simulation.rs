@@ -239,16 +239,16 @@ impl Simulation {
         &mut self,
         stepping: Stepping,
         mut observer: impl FnMut(&Frame<'_>),
-    ) -> Result<RunSummary, SimulationFailure> {
+    ) -> Result<RunSummary, Box<SimulationFailure>> {
         let start = Instant::now();
         let mut reports = Vec::new();
         let fail = |error: SolverError, step: usize, state: &State, reports: &Vec<StepReport>| {
-            SimulationFailure {
+            Box::new(SimulationFailure {
                 error,
                 failed_step: step,
                 last_state: state.clone(),
                 reports: reports.clone(),
-            }
+            })
         };
         let (steps, dt) = match stepping {
             Stepping::QuasiStatic { steps } => (steps, None),

@@ -13,17 +13,21 @@
 //! anchored fill-reducing order (see `ordering.rs`), and a supernodal `LDL^T` without
 //! pivoting whose symbolic factorization is computed once and reused.
 //!
-//! Pivots of magnitude below `epsilon` (the exactly singular P1-P1 KKT at `C = 0` has 3
-//! spurious pressure modes on structured boxes) are replaced by `+-delta` during the
+//! Pivots of magnitude below `epsilon` are replaced by `+-delta` during the
 //! factorization, keeping their sign, and the solve is refined iteratively against the
-//! unregularized matrix. Only tiny pivots are touched, so the signs of `D` still give the
-//! inertia in the same pass: `K` is positive definite on the null space of `G` exactly
-//! when `D` has `n` positive pivots (the remaining `m` are negative, or zero for redundant
-//! constraints). Otherwise [`LinearError::WrongInertia`] asks the caller to shift `K` and
-//! retry. (Regularizing with the expected signs `+1`/`-1` instead would also flip large
-//! pivots of the wrong sign, which are legitimate when `K` is indefinite only along the
-//! range of `G^T`, and would hide wrong inertia, so a second factorization would be
-//! needed for the check.) Sparse `LU` is the fallback.
+//! unregularized matrix. At `C = 0` such pivots come from the exactly singular P1-P1 KKT
+//! (3 spurious pressure modes on structured boxes) and from singular leading blocks of
+//! the elimination order. The factor is then exact for `A + E`, `E` diagonal with
+//! `|E| <= delta` (relative to the scaled matrix), so by Weyl's inequality the signs of
+//! `D` are the inertia of `A` except for eigenvalues of `A` within `delta` of zero.
+//! `K` is positive definite on the null space of `G` exactly when `A` has `n` positive
+//! eigenvalues (`rank G` negative, the rest zero), so fewer than `n` positive pivots is
+//! [`LinearError::WrongInertia`], which asks the caller to shift `K` and retry.
+//! Near-zero eigenvalues of `A` may turn positive under `E` and hide a wrong inertia
+//! when `C = 0`; with `C > 0` and no replaced pivots the check is exact. (Regularizing
+//! with the expected signs `+1`/`-1` instead would also flip large pivots of the wrong
+//! sign, which are legitimate when `K` is indefinite along the range of `G^T`.)
+//! Sparse `LU` is the fallback.
 
 use super::jacobi::{diagonal, saddle_point_diagonal};
 use super::operator::{norm, LinearOperator, SymmetricLower};
@@ -75,8 +79,8 @@ pub struct KktOptions {
     /// and send the factorization to the `LU` fallback or fail with
     /// [`LinearError::Singular`]).
     pub pivot_regularization: Option<PivotRegularization>,
-    /// Scaled pivots of at most this magnitude count as zero in the inertia when no
-    /// regularization is used (with regularization, the threshold is its `delta`).
+    /// Without regularization, scaled pivots of at most this magnitude count as zero and
+    /// send the factorization to the `LU` fallback (or fail as singular).
     pub zero_pivot_tolerance: f64,
     /// Most iterative refinement steps per solve.
     pub max_refinement_steps: usize,
@@ -373,35 +377,39 @@ impl KktSolver {
     /// vanish and no regularization is configured.
     fn factorize_filled(&mut self) -> Result<(), LinearError> {
         let (n, m) = (self.n, self.m);
-        // Replaced pivots are exactly +-delta: count them (and anything smaller) as zero.
-        let (regularization, zero) = match self.options.pivot_regularization {
-            Some(r) => (
-                LdltRegularization {
+        let regularization =
+            self.options
+                .pivot_regularization
+                .map_or_else(LdltRegularization::default, |r| LdltRegularization {
                     dynamic_regularization_signs: None,
                     dynamic_regularization_delta: r.delta,
                     dynamic_regularization_epsilon: r.epsilon,
-                },
-                r.delta,
-            ),
-            None => (
-                LdltRegularization::default(),
-                self.options.zero_pivot_tolerance,
-            ),
-        };
+                });
         let pivot = match self.ldlt(regularization) {
             Ok(()) => {
-                let inertia = count_inertia(&self.pivots()?, zero);
-                if inertia.positive != n || inertia.negative > m {
-                    return Err(wrong_inertia(inertia, n, m));
-                }
-                if inertia.zero == 0 || self.options.pivot_regularization.is_some() {
+                let pivots = self.pivots()?;
+                let (inertia, regularized) = match self.options.pivot_regularization {
+                    // The factor is exact for A + E with |E| <= delta diagonal (Weyl):
+                    // pivot signs give the inertia of A except for its near-zero
+                    // eigenvalues, which can only add positive pivots. Replaced pivots
+                    // are exactly +-delta.
+                    Some(r) => (
+                        count_inertia(&pivots, 0.0),
+                        pivots.iter().filter(|d| d.abs() == r.delta).count(),
+                    ),
+                    None => (count_inertia(&pivots, self.options.zero_pivot_tolerance), 0),
+                };
+                if inertia.zero == 0 {
+                    if inertia.positive < n {
+                        return Err(wrong_inertia(inertia, n, m));
+                    }
                     self.factor = Factor::Ldlt;
-                    self.report.method = match inertia.zero {
+                    self.report.method = match regularized {
                         0 => Method::Ldlt,
                         _ => Method::RegularizedLdlt,
                     };
                     self.report.inertia = Some(inertia);
-                    self.report.regularized_pivots = inertia.zero;
+                    self.report.regularized_pivots = regularized;
                     return Ok(());
                 }
                 0

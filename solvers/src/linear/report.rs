@@ -10,7 +10,7 @@ pub struct Inertia {
     pub positive: usize,
     /// Negative pivots.
     pub negative: usize,
-    /// Pivots below the zero threshold, or replaced by the pivot regularization.
+    /// Pivots below the zero threshold (without pivot regularization) or not finite.
     pub zero: usize,
 }
 
