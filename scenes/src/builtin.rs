@@ -29,6 +29,15 @@ pub const BUILTIN: &[(&str, &str)] = &[
         include_str!("../builtin/epidermis-puck.toml"),
     ),
     ("zoning-beam", include_str!("../builtin/zoning-beam.toml")),
+    ("ball-drop", include_str!("../builtin/ball-drop.toml")),
+    (
+        "ball-drop-coarse",
+        include_str!("../builtin/ball-drop-coarse.toml"),
+    ),
+    (
+        "resting-block",
+        include_str!("../builtin/resting-block.toml"),
+    ),
 ];
 
 /// The TOML text of a built-in scene.

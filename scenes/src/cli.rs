@@ -5,6 +5,7 @@
 //! isochor run SCENE [--set KEY=VALUE]... [--out DIR] [--json] [--variant NAME]
 //! isochor compare SCENE --methods A,B,... [--set KEY=VALUE]... [--sweep KEY=V1,V2,...] [--out DIR] [--json]
 //! isochor show SCENE [--set KEY=VALUE]... [--variant NAME]   # the scene as TOML, to copy and edit
+//! isochor study SCENE --methods A,B,... [--sweep res=1,2,4,8] [--probe NAME] [--reference METHOD] [--set KEY=VALUE]... [--out DIR]
 //! ```
 //!
 //! Exit status: 0 on success, 1 on an error (bad scene, key, value or file; nothing is
@@ -13,6 +14,7 @@
 
 use crate::compare::{compare, describe_output, parse_methods, CompareRequest};
 use crate::overrides::Override;
+use crate::study::{study, StudyRequest};
 use crate::{builtin, run_named, RunResult, SceneError, SceneSource};
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -78,6 +80,30 @@ pub enum Command {
         /// Print exactly one JSON object on stdout.
         #[arg(long)]
         json: bool,
+    },
+    /// Measure the speed/accuracy trade: every method at every mesh resolution, the error of
+    /// a probe against a Richardson-extrapolated reference, against wall time.
+    Study {
+        /// Built-in scene name or path to a TOML scene file.
+        scene: String,
+        /// Methods to compare, comma-separated (e.g. standard,mixed-p1,zonal).
+        #[arg(long, value_name = "A,B,...")]
+        methods: String,
+        /// Mesh resolutions (h = 1 / value), coarse to fine.
+        #[arg(long, value_name = "KEY=V1,V2,...", default_value = "res=1,2,4,8")]
+        sweep: String,
+        /// The probe to measure (default: the scene's deflection probe).
+        #[arg(long, value_name = "NAME")]
+        probe: Option<String>,
+        /// The method whose extrapolation is the reference (default: the best-converging).
+        #[arg(long, value_name = "METHOD")]
+        reference: Option<String>,
+        /// Override a parameter in every run.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Write study.csv, study.md and study.png to this folder (default: study-SCENE).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
     },
     /// Print a scene as TOML (after a variant and overrides), to copy, edit and run by path.
     Show {
@@ -155,6 +181,49 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             } else {
                 EXIT_NOT_CONVERGED
             })
+        }
+        Command::Study {
+            scene,
+            methods,
+            sweep,
+            probe,
+            reference,
+            set,
+            out,
+        } => {
+            let out = out.unwrap_or_else(|| {
+                let stem = std::path::Path::new(&scene)
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| scene.clone());
+                PathBuf::from(format!("study-{stem}"))
+            });
+            let request = StudyRequest {
+                scene,
+                methods: parse_methods(&methods)?,
+                sweep: Some(sweep),
+                probe,
+                reference: reference
+                    .as_deref()
+                    .map(|m| m.trim().parse().map_err(SceneError::from))
+                    .transpose()?,
+                overrides: parse_overrides(&set)?,
+                out: Some(out),
+                progress: true,
+            };
+            let (result, written) = study(&request)?;
+            write!(stdout, "{}", result.to_text()).map_err(io)?;
+            if let Some(dir) = written {
+                writeln!(
+                    stdout,
+                    "wrote {}, {} and {}",
+                    dir.join("study.csv").display(),
+                    dir.join("study.md").display(),
+                    dir.join("study.png").display()
+                )
+                .map_err(io)?;
+            }
+            Ok(0)
         }
         Command::Compare {
             scene,

@@ -22,10 +22,11 @@ pub mod result;
 pub mod run;
 pub mod scene;
 pub mod selection;
+pub mod study;
 
 pub use error::SceneError;
 pub use load::{load_scene, SceneSource};
 pub use overrides::Override;
-pub use result::{RunResult, StepRecord};
+pub use result::{ContactRecord, RunResult, StepRecord};
 pub use run::{run_named, run_scene, RunOptions};
 pub use scene::Scene;

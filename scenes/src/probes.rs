@@ -1,6 +1,7 @@
 //! Probes: named scalars measured on a state (the final one of a run), the numbers the
 //! papers' tables and figures report.
 
+use crate::result::StepRecord;
 use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
 use crate::selection::Selections;
 use crate::SceneError;
@@ -23,6 +24,8 @@ pub struct ProbeInput<'a> {
     pub energies: Energies,
     /// Volumetric stiffness `kappa` of the mixed methods (`None` if it does not apply).
     pub kappa: Option<f64>,
+    /// The accepted steps so far, for probes over the run (empty before a run).
+    pub history: &'a [StepRecord],
 }
 
 /// Evaluates every probe of `scene` (named, in name order).
@@ -56,6 +59,11 @@ impl From<SceneError> for ProbeError {
     fn from(e: SceneError) -> Self {
         ProbeError::Scene(e)
     }
+}
+
+/// The largest `value` over the accepted steps (0 before a run).
+fn over_run(input: &ProbeInput<'_>, value: impl Fn(&StepRecord) -> f64) -> f64 {
+    input.history.iter().map(value).fold(0.0, f64::max)
 }
 
 fn probe(
@@ -108,6 +116,28 @@ fn probe(
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),
         ProbeSpec::InvertedTets => mesh.count_inverted(x) as f64,
+        ProbeSpec::RunVolumeRatio { reduce } => {
+            let ratios: Vec<f64> = input
+                .history
+                .iter()
+                .map(|s| 1.0 + s.volume_change)
+                .collect();
+            if ratios.is_empty() {
+                f64::NAN
+            } else {
+                reduce_values(&ratios, *reduce)
+            }
+        }
+        ProbeSpec::MaxPenetration => over_run(input, |s| s.contact.max_penetration),
+        ProbeSpec::MaxContactForce => over_run(input, |s| {
+            let [x, y, z] = s.contact.force;
+            (x * x + y * y + z * z).sqrt()
+        }),
+        ProbeSpec::FirstContact => input
+            .history
+            .iter()
+            .find(|s| s.contact.active_vertices > 0)
+            .map_or(f64::NAN, |s| s.step as f64),
         ProbeSpec::ConstraintResidual => input.constraint_residual,
         ProbeSpec::PressureVolumeMismatch => {
             let p = pressures(input)?;

@@ -2,15 +2,15 @@
 //! only the terms the scene names, the [`Stepping`] and the [`Settings`].
 
 use crate::scene::{
-    KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, Scene, SolverSpec, SteppingSpec,
-    ZonalEnergyName, ZoneKind,
+    KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, ObstacleSpec, Scene, SolverSpec,
+    SteppingSpec, ZonalEnergyName, ZoneKind,
 };
 use crate::selection::Selections;
 use crate::SceneError;
 use isochor_mesh::{generate, TetMesh, Vec3, Zones};
 use isochor_solvers::{
-    Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Problem, Settings,
-    Stepping, ZonalEnergy,
+    Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Obstacle, Problem,
+    Settings, Shape, Stepping, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -72,10 +72,56 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
             zones,
             dirichlet,
             loads,
+            obstacles: scene.obstacles.iter().map(obstacle).collect(),
         },
         stepping: stepping(&scene.stepping),
         settings: settings(&scene.solver),
     })
+}
+
+/// The solver's obstacle (checked when the simulation is built).
+fn obstacle(spec: &ObstacleSpec) -> Obstacle {
+    let (shape, translate) = match *spec {
+        ObstacleSpec::HalfSpace {
+            point,
+            normal,
+            translate,
+        } => (
+            Shape::HalfSpace {
+                point: vec3(point),
+                normal: vec3(normal),
+            },
+            translate,
+        ),
+        ObstacleSpec::Sphere {
+            center,
+            radius,
+            translate,
+        } => (
+            Shape::Sphere {
+                center: vec3(center),
+                radius,
+            },
+            translate,
+        ),
+        ObstacleSpec::Cylinder {
+            point,
+            axis,
+            radius,
+            translate,
+        } => (
+            Shape::Cylinder {
+                point: vec3(point),
+                axis: vec3(axis),
+                radius,
+            },
+            translate,
+        ),
+    };
+    Obstacle {
+        shape,
+        translate: vec3(translate),
+    }
 }
 
 fn vec3(a: [f64; 3]) -> Vec3 {
@@ -288,6 +334,12 @@ pub fn settings(spec: &SolverSpec) -> Settings {
     }
     if let Some(v) = spec.project_hessians {
         s.project_hessians = v;
+    }
+    if let Some(v) = spec.contact_tolerance {
+        s.contact_tolerance = v;
+    }
+    if let Some(v) = spec.max_contact_iterations {
+        s.max_contact_iterations = v;
     }
     let iterative = spec.linear == Some(LinearName::Iterative)
         || (spec.linear.is_none()

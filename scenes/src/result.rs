@@ -35,6 +35,21 @@ pub struct StepRecord {
     pub external_energy: f64,
     /// Wall time of the step in seconds.
     pub wall_time_s: f64,
+    /// Contact forces of the accepted state (zeros without obstacles).
+    pub contact: ContactRecord,
+}
+
+/// The contact of one accepted step.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ContactRecord {
+    /// Total normal force the obstacles exert on the body (N).
+    pub force: [f64; 3],
+    /// Vertices with a positive contact force.
+    pub active_vertices: usize,
+    /// Largest penetration into an obstacle (m, within the contact tolerance).
+    pub max_penetration: f64,
+    /// Multiplier updates of the step.
+    pub iterations: usize,
 }
 
 /// The summary of a run.

@@ -4,7 +4,7 @@
 
 use crate::output::{write_run_outputs, FrameWriter, OutputDir};
 use crate::probes::{self, ProbeInput};
-use crate::result::{RunResult, StepRecord};
+use crate::result::{ContactRecord, RunResult, StepRecord};
 use crate::scene::Scene;
 use crate::{problem, SceneError};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -53,6 +53,7 @@ pub fn run_scene(
             constraint_residual: 0.0,
             energies: Energies::default(),
             kappa,
+            history: &[],
         },
     )?;
 
@@ -62,7 +63,7 @@ pub fn run_scene(
     let mut frames = match (&out, scene.output.vtu) {
         (Some(dir), true) => {
             let mut w = FrameWriter::new(dir.path(), "frame", scene.output.every, zone_ids);
-            w.write(&mesh, 0, 0.0, mesh.positions(), &zeros)?;
+            w.write(&mesh, 0, 0.0, mesh.positions(), &zeros, &[])?;
             Some(w)
         }
         _ => None,
@@ -81,8 +82,9 @@ pub fn run_scene(
         if let (Some(w), None) = (frames.as_mut(), write_error.as_ref()) {
             if w.wants(frame.index, total) {
                 let x = &frame.state.positions;
-                if let Err(e) = w.write(&mesh, frame.index, frame.state.t, x, &frame.tet_pressures)
-                {
+                let p = &frame.tet_pressures;
+                let f = &frame.contact_forces;
+                if let Err(e) = w.write(&mesh, frame.index, frame.state.t, x, p, f) {
                     write_error = Some(e);
                 }
             }
@@ -135,6 +137,7 @@ pub fn run_scene(
         constraint_residual,
         energies: last_energies,
         kappa,
+        history: &history,
     };
     let probes = match probes::evaluate(scene, &input) {
         Ok(p) => p,
@@ -207,6 +210,12 @@ fn record(mesh: &isochor_mesh::TetMesh, frame: &Frame<'_>) -> StepRecord {
         elastic_energy: frame.energies.elastic,
         external_energy: frame.energies.external,
         wall_time_s: report.wall_time.as_secs_f64(),
+        contact: ContactRecord {
+            force: report.contact.force.into(),
+            active_vertices: report.contact.active_vertices,
+            max_penetration: report.contact.max_penetration,
+            iterations: report.contact_iterations,
+        },
     }
 }
 

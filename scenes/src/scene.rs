@@ -36,6 +36,9 @@ pub struct Scene {
     /// External loads.
     #[serde(default)]
     pub loads: LoadsSpec,
+    /// Rigid obstacles (frictionless contact with the boundary vertices).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub obstacles: Vec<ObstacleSpec>,
     /// Zones of the `zonal` method (one global zone if absent).
     #[serde(default)]
     pub zones: Option<ZonesSpec>,
@@ -335,6 +338,38 @@ pub struct LoadsSpec {
     pub pressure: Vec<PressureSpec>,
 }
 
+/// A rigid obstacle, translated by `translate` over the stepping (quasi-static load
+/// parameter or `time / duration`), e.g. `{ shape = "half-space" }` for the ground `z = 0`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "shape", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum ObstacleSpec {
+    /// The solid below the plane through `point` (default origin) with outward `normal`
+    /// (default `+z`).
+    HalfSpace {
+        #[serde(default)]
+        point: Vector,
+        #[serde(default = "z_axis")]
+        normal: Vector,
+        #[serde(default)]
+        translate: Vector,
+    },
+    /// A solid sphere.
+    Sphere {
+        center: Vector,
+        radius: f64,
+        #[serde(default)]
+        translate: Vector,
+    },
+    /// An infinite solid cylinder about the line through `point` along `axis`.
+    Cylinder {
+        point: Vector,
+        axis: Vector,
+        radius: f64,
+        #[serde(default)]
+        translate: Vector,
+    },
+}
+
 /// A dead traction (Pa) on the boundary faces of a selection.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -399,6 +434,11 @@ pub struct SolverSpec {
     pub linear_tolerance: Option<f64>,
     /// Iteration limit of the iterative linear solver.
     pub linear_max_iterations: Option<usize>,
+    /// Largest accepted penetration into an obstacle, relative to the mesh's bounding-box
+    /// diagonal (default 1e-6).
+    pub contact_tolerance: Option<f64>,
+    /// Contact multiplier updates per step (default 30).
+    pub max_contact_iterations: Option<usize>,
 }
 
 /// Linear solver choice.
@@ -454,6 +494,15 @@ pub enum ProbeSpec {
     },
     /// An energy of the final frame: `kinetic`, `elastic`, `external` or `total`.
     Energy { which: EnergyName },
+    /// Whole-body deformed/rest volume over the run's accepted steps, reduced by `reduce`
+    /// (`min`, `max` or `mean`; e.g. the volume extremes of Figs. 10-11 of Sheen et al.).
+    RunVolumeRatio { reduce: Reduce },
+    /// Largest penetration of a vertex into an obstacle over the run.
+    MaxPenetration,
+    /// The first step or frame with a vertex in contact (NaN if none).
+    FirstContact,
+    /// Largest norm of the total contact force over the run.
+    MaxContactForce,
 }
 
 fn unit() -> f64 {

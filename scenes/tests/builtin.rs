@@ -24,6 +24,11 @@ fn reduced(name: &str) -> Vec<Override> {
         "dynamic-cube" => &["res=2", "frames=3"],
         "bulge-puck" | "epidermis-puck" => &["res=2", "steps=3"],
         "zoning-beam" => &["res=1", "steps=2"],
+        // Dropped from 0.2 mm so that the 48-tet ball lands within the frames.
+        "ball-drop" | "ball-drop-coarse" => {
+            &["res=1", "frames=12", "mesh.center=[0.0, 0.0, 0.1002]"]
+        }
+        "resting-block" => &["res=2", "steps=1"],
         other => panic!("no reduced version of scene {other}: add one here"),
     };
     sets.iter().map(|s| Override::parse(s).unwrap()).collect()
@@ -39,8 +44,8 @@ fn every_builtin_scene_parses_and_builds_a_problem() {
         let built = build(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(built.problem.mesh.num_tets() > 0);
         assert!(
-            !built.problem.dirichlet.is_empty(),
-            "{name} has no Dirichlet condition"
+            !built.problem.dirichlet.is_empty() || !built.problem.obstacles.is_empty(),
+            "{name} has no Dirichlet condition or obstacle"
         );
         for d in &built.problem.dirichlet {
             assert!(!d.vertices.is_empty());
@@ -78,6 +83,10 @@ fn default_sizes_match_the_papers() {
     assert_eq!(verts("pressure-cube"), 12 * 12 * 12);
     assert_eq!(verts("zoning-beam"), 16 * 4 * 4);
     assert_eq!(tets("dynamic-cube"), 6 * 16 * 16 * 16);
+    // 48 res^3 tets: res 11 is the "64K tets" ball of Fig. 10 of Sheen et al., res 5 the
+    // closest to the 4.7K tets of Fig. 11.
+    assert_eq!(tets("ball-drop"), 63_888);
+    assert_eq!(tets("ball-drop-coarse"), 6_000);
 }
 
 #[test]

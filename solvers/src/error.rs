@@ -30,8 +30,15 @@ pub enum SolverError {
         force_residual: f64,
         constraint_residual: f64,
     },
+    #[error("the prescribed motion was not reached in {iterations} iterations: the boundary is still {gap:e} away because full steps leave the energy's domain (inverted or flattened tets); use more steps or an invertible energy (zonal)")]
+    BoundaryUnreachable { iterations: usize, gap: f64 },
     #[error("line search failed after {backtracks} backtracks: {reason}")]
     LineSearch { backtracks: usize, reason: String },
+    #[error("contact did not converge in {iterations} multiplier updates (penetration {max_penetration:e} m)")]
+    ContactNotConverged {
+        iterations: usize,
+        max_penetration: f64,
+    },
     #[error("linear solver failed: {0}")]
     Linear(String),
     #[error("non-finite value in {0}")]

@@ -24,8 +24,10 @@ pub mod terms;
 pub use dofs::Dofs;
 pub use error::SolverError;
 pub use problem::{
-    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Problem, ZonalEnergy,
+    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Shape,
+    ZonalEnergy,
 };
 pub use report::{IterationReport, StepReport, Timings};
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{Energies, Frame, RunSummary, Simulation, SimulationFailure, State, Stepping};
+pub use terms::ContactSummary;

@@ -2,7 +2,7 @@
 //! loads it lists, the constraint set of a mixed or zonal method, the lumped masses.
 
 use crate::terms::{
-    AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure,
+    AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure,
 };
 use crate::{Dofs, Load, Method, Problem, SolverError, ZonalEnergy};
 use isochor_constraints::{
@@ -12,7 +12,7 @@ use isochor_constraints::{
 use isochor_energies::{
     constrained_neo_hookean, standard_neo_hookean, DistortionalNeoHookean, Epidermis, Hyperelastic,
 };
-use isochor_mesh::{TetMesh, Vec3, Zones};
+use isochor_mesh::{BoundarySurface, TetMesh, Vec3, Zones};
 use std::sync::Arc;
 
 /// How the nonlinear problem is solved.
@@ -39,6 +39,8 @@ pub struct Model {
     pub constraints: Option<Arc<dyn ConstraintSet>>,
     /// The constraints folded into the primal energy of the dual solver.
     pub augmented: Option<AugmentedConstraints>,
+    /// Contact of the boundary vertices against the problem's obstacles.
+    pub contact: Option<Contact>,
     /// Rest volume measured by each constraint row (scales the constraint residual).
     pub row_volumes: Vec<f64>,
     /// For the zonal method, the penalty stiffness and its derivative for output pressures.
@@ -47,6 +49,9 @@ pub struct Model {
     pub masses: Vec<f64>,
     mu: f64,
 }
+
+/// Contact penalty relative to the vertex stiffness (see [`Model::set_contact_stiffness`]).
+const CONTACT_PENALTY: f64 = 100.0;
 
 /// Lumped vertex masses `rho sum_e V_e / 4`.
 pub fn lumped_masses(mesh: &TetMesh, density: f64) -> Vec<f64> {
@@ -98,7 +103,11 @@ impl Model {
             zones,
             dirichlet,
             loads,
+            obstacles,
         } = problem;
+        for obstacle in &obstacles {
+            obstacle.validate()?;
+        }
         material.validate()?;
         let dofs = Dofs::new(mesh.num_vertices(), &dirichlet)?;
         let masses = lumped_masses(&mesh, material.density);
@@ -141,6 +150,12 @@ impl Model {
                     material.nodal_compliance,
                 )?));
                 Strategy::SaddleDirect
+            }
+            Method::MixedP0 | Method::MixedP0Log if material.nu >= 0.5 => {
+                return Err(unsupported(
+                    "element (P0) constraints with zero compliance over-constrain linear tets (about 5 tets, so 5 \
+                     constraints, per 3 vertex DOFs): the system is singular and locks; use mixed-p1 or zonal",
+                ));
             }
             Method::MixedP0 | Method::MixedP0Log => {
                 let measure = if method == Method::MixedP0 {
@@ -221,7 +236,13 @@ impl Model {
             .map(|c| row_volumes(c, mesh.positions()))
             .transpose()?
             .unwrap_or_default();
-        Ok(Model {
+        let contact = (!obstacles.is_empty())
+            .then(|| -> Result<Contact, SolverError> {
+                let vertices = BoundarySurface::new(&mesh)?.vertices().to_vec();
+                Ok(Contact::new(vertices, obstacles, Vec::new()))
+            })
+            .transpose()?;
+        let mut model = Model {
             mesh,
             method,
             strategy,
@@ -233,6 +254,31 @@ impl Model {
             dofs,
             masses,
             mu,
-        })
+            contact,
+        };
+        model.set_contact_stiffness(None);
+        Ok(model)
+    }
+
+    /// Sets the contact penalty of every candidate vertex to
+    /// `rho_i = CONTACT_PENALTY (mu h + m_i / dt^2)`: a multiple of the stiffness a unit
+    /// normal displacement of the vertex meets (shear stiffness of its cells of size `h`,
+    /// plus its inertia in implicit Euler). Large enough that each multiplier update cuts
+    /// the penetration by orders of magnitude, small enough to keep the Newton matrices well
+    /// conditioned next to the volumetric stiffness (`lambda h` up to `1e4 mu h`).
+    pub fn set_contact_stiffness(&mut self, dt: Option<f64>) {
+        let h = (6.0 * self.mesh.rest_volume() / self.mesh.num_tets().max(1) as f64).cbrt();
+        let elastic = self.mu * h;
+        if let Some(contact) = &mut self.contact {
+            let stiffness = contact
+                .vertices()
+                .iter()
+                .map(|&v| {
+                    let inertia = dt.map_or(0.0, |dt| self.masses[v] / (dt * dt));
+                    CONTACT_PENALTY * (elastic + inertia)
+                })
+                .collect();
+            contact.set_stiffness(stiffness);
+        }
     }
 }

@@ -6,7 +6,7 @@
 use crate::linear::{
     cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower,
 };
-use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
+use crate::step::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::system::System;
 use crate::LinearSolver;
 use crate::{IterationReport, SolverError, StepReport};
@@ -45,8 +45,11 @@ impl Newton {
         target: &StepTarget,
         report: &mut StepReport,
     ) -> Result<(), SolverError> {
-        if self.iterate(system, x, target, report, system.settings.max_iterations)? {
+        let iterations = system.settings.max_iterations;
+        if self.iterate(system, x, target, report, iterations)? {
             Ok(())
+        } else if let Some(gap) = remaining_gap(x, target) {
+            Err(SolverError::BoundaryUnreachable { iterations, gap })
         } else {
             Err(SolverError::NotConverged {
                 iterations: system.settings.max_iterations,

@@ -342,4 +342,118 @@ pub struct Problem {
     pub dirichlet: Vec<Dirichlet>,
     /// External loads.
     pub loads: Vec<Load>,
+    /// Rigid obstacles the surface vertices may not enter (frictionless contact).
+    pub obstacles: Vec<Obstacle>,
+}
+
+/// The shape of a rigid obstacle in its reference position. Each has a signed distance
+/// `d(x)`, positive outside, that the contact constraints `d(x_i) >= 0` act on (sec. 8.2-8.3
+/// of Francu et al. 2021).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// The half-space below the plane through `point` with (outward) `normal`:
+    /// `d = n . (x - p)`.
+    HalfSpace { point: Vec3, normal: Vec3 },
+    /// A solid sphere: `d = |x - c| - R`.
+    Sphere { center: Vec3, radius: f64 },
+    /// An infinite solid cylinder around the line through `point` along `axis`:
+    /// `d = dist(x, axis) - R`.
+    Cylinder {
+        point: Vec3,
+        axis: Vec3,
+        radius: f64,
+    },
+}
+
+/// A rigid obstacle: a shape translated by `t * translate` with `t` the load parameter
+/// (quasi-static) or `time / duration` (dynamics), like a [`Motion::Translate`] condition.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Obstacle {
+    /// The shape at `t = 0`.
+    pub shape: Shape,
+    /// Displacement at `t = 1`.
+    pub translate: Vec3,
+}
+
+impl Obstacle {
+    /// A fixed obstacle.
+    pub fn fixed(shape: Shape) -> Self {
+        Obstacle {
+            shape,
+            translate: Vec3::zeros(),
+        }
+    }
+
+    /// Checks the shape: finite data, a non-zero normal or axis, a positive radius.
+    pub fn validate(&self) -> Result<(), SolverError> {
+        let bad = |what: &str| Err(SolverError::InvalidProblem(format!("obstacle: {what}")));
+        let finite = |v: &Vec3| v.iter().all(|c| c.is_finite());
+        let positive = |r: f64| r.is_finite() && r > 0.0;
+        if !finite(&self.translate) {
+            return bad("the translation must be finite");
+        }
+        match self.shape {
+            Shape::HalfSpace { point, normal } => {
+                if !finite(&point) || !finite(&normal) || normal.norm() == 0.0 {
+                    return bad("a half-space needs a finite point and a non-zero normal");
+                }
+            }
+            Shape::Sphere { center, radius } => {
+                if !(finite(&center) && positive(radius)) {
+                    return bad("a sphere needs a finite center and a positive radius");
+                }
+            }
+            Shape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                if !(finite(&point) && finite(&axis) && axis.norm() > 0.0 && positive(radius)) {
+                    return bad(
+                        "a cylinder needs a finite point, a non-zero axis and a positive radius",
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Signed distance `d`, its gradient `n` and Hessian at `x`, with the obstacle moved to
+    /// parameter `t`.
+    pub fn distance(&self, x: &Vec3, t: f64) -> (f64, Vec3, nalgebra::Matrix3<f64>) {
+        let shift = t * self.translate;
+        let zero = nalgebra::Matrix3::zeros();
+        match self.shape {
+            Shape::HalfSpace { point, normal } => {
+                let n = normal.normalize();
+                (n.dot(&(x - point - shift)), n, zero)
+            }
+            Shape::Sphere { center, radius } => radial(x - center - shift, radius, None),
+            Shape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                let a = axis.normalize();
+                let r = x - point - shift;
+                radial(r - a * a.dot(&r), radius, Some(a))
+            }
+        }
+    }
+}
+
+/// `d = |r| - R` with gradient `u = r / |r|` and Hessian `(I - u u^T - a a^T) / |r|` (`a` the
+/// cylinder axis). At `r = 0` (a vertex on the centre, far inside) the direction is
+/// undefined: `+z` is taken, with no curvature.
+fn radial(r: Vec3, radius: f64, axis: Option<Vec3>) -> (f64, Vec3, nalgebra::Matrix3<f64>) {
+    let len = r.norm();
+    if len <= f64::MIN_POSITIVE.sqrt() {
+        return (-radius, Vec3::z(), nalgebra::Matrix3::zeros());
+    }
+    let u = r / len;
+    let mut h = nalgebra::Matrix3::identity() - u * u.transpose();
+    if let Some(a) = axis {
+        h -= a * a.transpose();
+    }
+    (len - radius, u, h / len)
 }

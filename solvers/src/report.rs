@@ -1,5 +1,6 @@
 //! Reports of every Newton iteration and step: how users see the speed/accuracy trade.
 
+use crate::terms::ContactSummary;
 use std::time::Duration;
 
 /// One Newton (or dual) iteration.
@@ -55,6 +56,10 @@ pub struct StepReport {
     pub timings: Timings,
     /// Wall time of the whole step.
     pub wall_time: Duration,
+    /// Contact multiplier updates (outer augmented-Lagrangian iterations; 0 without obstacles).
+    pub contact_iterations: usize,
+    /// Contact forces at the accepted state (zero without obstacles).
+    pub contact: ContactSummary,
 }
 
 impl StepReport {

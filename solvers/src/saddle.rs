@@ -16,7 +16,7 @@ use crate::linear::{
     KktSolver, LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
 };
 use crate::model::Strategy;
-use crate::step::{add_scaled, gap, max_abs, norm, snap, StepTarget};
+use crate::step::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::system::System;
 use crate::{IterationReport, LinearSolver, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
@@ -331,6 +331,12 @@ impl SaddleNewton {
                 step_length: alpha,
                 backtracks,
                 regularization: shift,
+            });
+        }
+        if let Some(gap) = remaining_gap(x, target) {
+            return Err(SolverError::BoundaryUnreachable {
+                iterations: settings.max_iterations,
+                gap,
             });
         }
         Err(SolverError::NotConverged {

@@ -36,6 +36,11 @@ pub struct Settings {
     pub project_hessians: bool,
     /// Linear solver.
     pub linear: LinearSolver,
+    /// Largest penetration of a vertex into an obstacle accepted at convergence, relative to
+    /// the diagonal of the mesh's rest bounding box.
+    pub contact_tolerance: f64,
+    /// Multiplier updates (outer augmented-Lagrangian iterations) of the contact per step.
+    pub max_contact_iterations: usize,
 }
 
 impl Default for Settings {
@@ -49,6 +54,8 @@ impl Default for Settings {
             dual_conjugate: true,
             project_hessians: false,
             linear: LinearSolver::Direct,
+            contact_tolerance: 1e-6,
+            max_contact_iterations: 30,
         }
     }
 }

@@ -59,6 +59,8 @@ pub struct Frame<'a> {
     pub energies: Energies,
     /// Tets with non-positive volume in this state.
     pub inverted_tets: usize,
+    /// Contact force on every vertex (empty without obstacles).
+    pub contact_forces: Vec<Vec3>,
     /// The step's iteration log.
     pub report: &'a StepReport,
 }
@@ -207,6 +209,16 @@ impl Simulation {
             .collect()
     }
 
+    /// The contact multipliers (normal force per vertex and obstacle, never negative),
+    /// boundary-vertex-major over the obstacles; empty without obstacles.
+    pub fn contact_multipliers(&self) -> Vec<f64> {
+        self.model
+            .contact
+            .as_ref()
+            .map(|c| c.multipliers())
+            .unwrap_or_default()
+    }
+
     /// Energies of `state`.
     pub fn energies(&self, state: &State) -> Energies {
         let mut energies = Energies {
@@ -262,6 +274,9 @@ impl Simulation {
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
         };
         let inertia = dt.map(|dt| Inertia::new(self.model.masses.clone(), dt));
+        self.model.set_contact_stiffness(dt);
+        let (lo, hi) = self.model.mesh.bounding_box();
+        let contact_tolerance = self.settings.contact_tolerance * (hi - lo).norm();
         let setup = (|| {
             let system = System::new(&self.model, inertia, self.settings)?;
             let solver = match self.model.strategy {
@@ -295,6 +310,9 @@ impl Simulation {
             if let Some(inertia) = &mut system.inertia {
                 inertia.begin_step(&self.state.positions, &self.state.velocities);
             }
+            if let Some(contact) = &system.model.contact {
+                contact.set_time(fraction);
+            }
             let target = StepTarget {
                 load,
                 prescribed: self
@@ -311,17 +329,41 @@ impl Simulation {
                 t,
                 ..StepReport::default()
             };
-            let result = match &mut solver {
-                Solver::Newton(newton) => {
-                    newton.minimize(&mut system, &mut x, &target, &mut report)
+            // The contact's projected multiplier updates (its module docs) around the
+            // method's own solve.
+            let result = loop {
+                let solved = match &mut solver {
+                    Solver::Newton(newton) => {
+                        newton.minimize(&mut system, &mut x, &target, &mut report)
+                    }
+                    Solver::Saddle(saddle) => {
+                        saddle.solve(&mut system, &mut x, &mut p, &target, &mut report)
+                    }
+                    Solver::Dual(newton) => {
+                        dual::solve(newton, &mut system, &mut x, &mut p, &target, &mut report)
+                    }
+                };
+                let Some(contact) = &system.model.contact else {
+                    break solved;
+                };
+                if solved.is_err() {
+                    break solved;
                 }
-                Solver::Saddle(saddle) => {
-                    saddle.solve(&mut system, &mut x, &mut p, &target, &mut report)
+                report.contact_iterations += 1;
+                if contact.update(&x, contact_tolerance) {
+                    break solved;
                 }
-                Solver::Dual(newton) => {
-                    dual::solve(newton, &mut system, &mut x, &mut p, &target, &mut report)
+                if report.contact_iterations >= self.settings.max_contact_iterations {
+                    report.converged = false;
+                    break Err(SolverError::ContactNotConverged {
+                        iterations: report.contact_iterations,
+                        max_penetration: contact.summary(&x).max_penetration,
+                    });
                 }
             };
+            if let Some(contact) = &system.model.contact {
+                report.contact = contact.summary(&x);
+            }
             report.wall_time = step_start.elapsed();
             reports.push(report);
             if let Err(e) = result {
@@ -350,6 +392,12 @@ impl Simulation {
                 tet_pressures: self.tet_pressures(&self.state),
                 energies: self.energies(&self.state),
                 inverted_tets: inverted,
+                contact_forces: self
+                    .model
+                    .contact
+                    .as_ref()
+                    .map(|c| c.vertex_forces(&self.state.positions))
+                    .unwrap_or_default(),
                 report,
             });
         }
@@ -387,6 +435,12 @@ fn check_settings(s: &Settings) -> Result<(), SolverError> {
     }
     if !(s.constraint_tolerance > 0.0 && s.constraint_tolerance.is_finite()) {
         return bad("constraint_tolerance must be positive");
+    }
+    if !(s.contact_tolerance > 0.0 && s.contact_tolerance.is_finite()) {
+        return bad("contact_tolerance must be positive");
+    }
+    if s.max_contact_iterations == 0 {
+        return bad("max_contact_iterations must be at least 1");
     }
     Ok(())
 }

@@ -48,3 +48,9 @@ pub fn snap(x: &mut [Vec3], prescribed: &[(usize, f64)]) {
         x[dof / 3][dof % 3] = value;
     }
 }
+
+/// The largest distance of a prescribed DOF from its target, if any is not reached.
+pub fn remaining_gap(x: &[Vec3], target: &StepTarget) -> Option<f64> {
+    let gap = max_abs(&gap(x, &target.prescribed, 3 * x.len()));
+    (gap > 0.0).then_some(gap)
+}

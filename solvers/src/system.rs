@@ -58,6 +58,9 @@ impl<'m> System<'m> {
         if let Some(a) = &model.augmented {
             push(a.hessian_pattern());
         }
+        if let Some(c) = &model.contact {
+            push(c.hessian_pattern());
+        }
         if let Some(i) = &inertia {
             push(i.hessian_pattern());
         }
@@ -93,13 +96,14 @@ impl<'m> System<'m> {
     }
 
     /// Every energy term: the model's, the folded constraints of the dual/condensed solvers,
-    /// and the inertia.
+    /// the contact, and the inertia.
     fn terms(&self) -> impl Iterator<Item = &dyn EnergyTerm> {
         self.model
             .terms
             .iter()
             .map(|t| t.as_ref() as &dyn EnergyTerm)
             .chain(self.model.augmented.iter().map(|a| a as &dyn EnergyTerm))
+            .chain(self.model.contact.iter().map(|c| c as &dyn EnergyTerm))
             .chain(self.inertia.iter().map(|i| i as &dyn EnergyTerm))
     }
 

@@ -52,6 +52,7 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         method: Method::Standard,
         material,
         zones: None,
+        obstacles: Vec::new(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let summary = sim.run(Stepping::QuasiStatic { steps: 3 }, |_| {}).unwrap();

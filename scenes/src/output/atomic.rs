@@ -4,7 +4,7 @@ use crate::SceneError;
 use std::path::{Path, PathBuf};
 
 /// Files that mark a folder as an isochor output folder (so it may be replaced).
-const MARKERS: [&str; 2] = ["summary.json", "compare.csv"];
+const MARKERS: [&str; 3] = ["summary.json", "compare.csv", "study.csv"];
 
 /// A temporary folder `.NAME.tmp-PID` next to the destination; [`OutputDir::commit`] renames
 /// it to the destination, and dropping it uncommitted removes it.

@@ -1,4 +1,4 @@
-//! VTU frames (displacement, pressure, J, zone) and their `.pvd` collection, through the
+//! VTU frames (displacement, contact force, pressure, J, zone) and their `.pvd` collection, through the
 //! mesh crate's writers.
 
 use crate::SceneError;
@@ -34,7 +34,8 @@ impl FrameWriter {
         index % self.every == 0 || index == total
     }
 
-    /// Writes frame `index` at time or load `t` (0 is the rest state).
+    /// Writes frame `index` at time or load `t` (0 is the rest state), with the contact
+    /// force per vertex as point data if given (one per vertex).
     pub fn write(
         &mut self,
         mesh: &TetMesh,
@@ -42,6 +43,7 @@ impl FrameWriter {
         t: f64,
         positions: &[Vec3],
         tet_pressures: &[f64],
+        contact_forces: &[Vec3],
     ) -> Result<(), SceneError> {
         let rest = mesh.positions();
         let displacement: Vec<Vec3> = positions.iter().zip(rest).map(|(x, r)| x - r).collect();
@@ -57,12 +59,16 @@ impl FrameWriter {
         if let Some(z) = &self.zone_ids {
             cells.push(Field::int("zone", z.clone()));
         }
+        let mut points = vec![Field::vector("displacement", displacement)];
+        if contact_forces.len() == positions.len() {
+            points.push(Field::vector("contact_force", contact_forces.to_vec()));
+        }
         let name = format!("{}_{index:05}.vtu", self.stem);
         write_vtu(
             self.dir.join(&name),
             positions,
             mesh.tets(),
-            &[Field::vector("displacement", displacement)],
+            &points,
             &cells,
         )?;
         self.entries.push((t, name));

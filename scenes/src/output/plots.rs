@@ -15,7 +15,7 @@ use std::sync::Once;
 
 const SIZE: (u32, u32) = (1000, 600);
 
-fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The embedded font is valid; if registration failed anyway, text would be missing.
@@ -211,6 +211,7 @@ mod tests {
             elastic_energy: 1.0,
             external_energy: -0.5 * step as f64,
             wall_time_s: 0.0,
+            contact: Default::default(),
         }
     }
 

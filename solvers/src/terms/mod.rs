@@ -3,6 +3,7 @@
 //! line searches use to back off (the "Form" contract of polyfem).
 
 mod augmented;
+mod contact;
 mod dead_load;
 mod elastic;
 mod epidermis;
@@ -11,6 +12,7 @@ mod inertia;
 mod pressure;
 
 pub use augmented::AugmentedConstraints;
+pub use contact::{Contact, ContactSummary};
 pub use dead_load::DeadLoad;
 pub use elastic::Elastic;
 pub use epidermis::EpidermisTerm;

@@ -83,3 +83,78 @@ pub fn variation(values: &[f64]) -> f64 {
     let min = values.iter().copied().fold(f64::INFINITY, f64::min);
     max / min - 1.0
 }
+
+/// The outcome of a run that may fail: the result, or the error of a scene that could not
+/// be built, or the message of a panic (which is always a bug).
+pub enum Outcome {
+    /// The run happened (converged or not).
+    Ran(Box<RunResult>),
+    /// The scene could not be loaded or built: a clear error.
+    Error(String),
+    /// The run panicked.
+    Panic(String),
+}
+
+/// Like [`run`] but never panics: catches errors and panics.
+pub fn try_run(scene: &str, variant: Option<&str>, sets: &[&str]) -> Outcome {
+    let overrides: Result<Vec<Override>, String> = sets
+        .iter()
+        .map(|s| Override::parse(s).map_err(|e| e.to_string()))
+        .collect();
+    let attempt = std::panic::catch_unwind(|| {
+        let scene = load_scene(scene, variant, &overrides?).map_err(|e| e.to_string())?;
+        run_scene(&scene, &RunOptions::default())
+            .map(|(r, _)| r)
+            .map_err(|e| e.to_string())
+    });
+    match attempt {
+        Ok(Ok(r)) => Outcome::Ran(Box::new(r)),
+        Ok(Err(e)) => Outcome::Error(e),
+        Err(p) => Outcome::Panic(
+            p.downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default(),
+        ),
+    }
+}
+
+/// Checks that an outcome is a converged state with finite output or a clear error, and
+/// returns a one-line description of it.
+pub fn check_outcome(what: &str, outcome: &Outcome) -> Result<String, String> {
+    match outcome {
+        Outcome::Panic(m) => Err(format!("{what}: panicked: {m}")),
+        Outcome::Error(e) if e.trim().is_empty() => Err(format!("{what}: empty error")),
+        Outcome::Error(e) => Ok(format!("{what}: error: {e}")),
+        Outcome::Ran(r) => {
+            let finite = r.volume_change.is_finite() && r.probes.values().all(|v| v.is_finite());
+            if r.converged {
+                if finite {
+                    Ok(format!(
+                        "{what}: converged, {} Newton iterations, volume change {:+.2e}, max inverted {}, probes {:?}",
+                        r.newton_iterations, r.volume_change, r.max_inverted_tets, r.probes
+                    ))
+                } else {
+                    Err(format!(
+                        "{what}: converged with non-finite output {:?}",
+                        r.probes
+                    ))
+                }
+            } else {
+                match &r.error {
+                    Some(e) if !e.trim().is_empty() => Ok(format!(
+                        "{what}: stopped at step {:?}/{}: {e}{}",
+                        r.failed_step,
+                        r.steps_requested,
+                        if finite {
+                            ""
+                        } else {
+                            " (probes of the last state NaN)"
+                        }
+                    )),
+                    _ => Err(format!("{what}: not converged without an error message")),
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,225 @@
+//! Frictionless contact of mesh vertices against rigid obstacles, as inequality constraints
+//! `d_k(x_i) >= 0` (signed distance of vertex `i` to obstacle `k`, positive outside).
+//!
+//! Sec. 8.2 of Francu et al. 2021 treats contacts as bilateral soft constraints for a frame;
+//! sec. 8.3 notes that the dual method can instead project the contact multipliers onto
+//! `R_+`, which is the complementarity formulation. This term is that projected dual ascent,
+//! augmented (an augmented Lagrangian for inequalities, Nocedal & Wright 17.4): for fixed
+//! multipliers `lambda >= 0` and a penalty `rho` per vertex, each pair contributes
+//!
+//! `psi(d) = (max(0, lambda - rho d)^2 - lambda^2) / (2 rho)`,
+//!
+//! a C1, piecewise smooth, convex function of `d` whose force on the vertex is
+//! `f n = max(0, lambda - rho d) grad d`. The stepping driver minimizes (or makes stationary)
+//! the total energy with the multipliers fixed, then projects `lambda <- max(0, lambda - rho d)`,
+//! until no multiplier moves by more than `rho` times the penetration tolerance: then no
+//! vertex is inside an obstacle by more than the tolerance, every multiplier is non-negative
+//! by construction, and a multiplier is positive only where the gap is within the tolerance
+//! (complementarity). Because contact is just another energy term, every solver (Newton,
+//! saddle-point Newton with zero-compliance constraints, dual ascent) handles it unchanged.
+
+use super::EnergyTerm;
+use crate::{Obstacle, SolverError};
+use isochor_mesh::Vec3;
+use nalgebra::Matrix3;
+use std::sync::{RwLock, RwLockWriteGuard};
+
+/// Totals of the contact forces at a state.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactSummary {
+    /// Sum of the normal forces the obstacles exert on the body.
+    pub force: Vec3,
+    /// Vertices with a positive contact force.
+    pub active_vertices: usize,
+    /// Largest penetration `max(0, -d)` over all vertex-obstacle pairs.
+    pub max_penetration: f64,
+}
+
+/// Multipliers, one per (candidate vertex, obstacle) pair, vertex-major, and the obstacles'
+/// motion parameter.
+#[derive(Debug)]
+struct ContactState {
+    multipliers: Vec<f64>,
+    t: f64,
+}
+
+/// Augmented-Lagrangian contact of `vertices` against `obstacles`.
+#[derive(Debug)]
+pub struct Contact {
+    obstacles: Vec<Obstacle>,
+    vertices: Vec<usize>,
+    /// Penalty `rho` of each candidate vertex (force per length).
+    stiffness: Vec<f64>,
+    state: RwLock<ContactState>,
+}
+
+impl Contact {
+    /// Contact of `vertices` (those that may touch, e.g. the boundary surface) against
+    /// `obstacles` with per-vertex penalties `stiffness`; multipliers start at 0.
+    pub fn new(vertices: Vec<usize>, obstacles: Vec<Obstacle>, stiffness: Vec<f64>) -> Self {
+        let pairs = vertices.len() * obstacles.len();
+        Contact {
+            obstacles,
+            vertices,
+            stiffness,
+            state: RwLock::new(ContactState {
+                multipliers: vec![0.0; pairs],
+                t: 0.0,
+            }),
+        }
+    }
+
+    fn state(&self) -> RwLockWriteGuard<'_, ContactState> {
+        // A poisoned lock only means another thread panicked mid-write of plain floats.
+        self.state.write().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The candidate vertices.
+    pub fn vertices(&self) -> &[usize] {
+        &self.vertices
+    }
+
+    /// Replaces the penalties (e.g. when the time step changes the inertia scale).
+    pub fn set_stiffness(&mut self, stiffness: Vec<f64>) {
+        self.stiffness = stiffness;
+    }
+
+    /// Moves the obstacles to parameter `t` (load parameter or `time / duration`).
+    pub fn set_time(&self, t: f64) {
+        self.state().t = t;
+    }
+
+    /// The multipliers (normal force magnitudes), vertex-major over the obstacles.
+    pub fn multipliers(&self) -> Vec<f64> {
+        self.state().multipliers.clone()
+    }
+
+    /// `(candidate index, obstacle index, d, grad d, Hess d)` of every pair at `x`.
+    fn pairs<'a>(
+        &'a self,
+        x: &'a [Vec3],
+        t: f64,
+    ) -> impl Iterator<Item = (usize, usize, f64, Vec3, Matrix3<f64>)> + 'a {
+        self.vertices.iter().enumerate().flat_map(move |(a, &v)| {
+            self.obstacles.iter().enumerate().map(move |(k, o)| {
+                let (d, n, h) = o.distance(&x[v], t);
+                (a, k, d, n, h)
+            })
+        })
+    }
+
+    /// The projected multiplier update `lambda <- max(0, lambda - rho d)` at the solution `x`
+    /// of the current subproblem; returns whether every multiplier moved by at most
+    /// `rho * tolerance` (then penetrations are within `tolerance` and complementarity holds
+    /// to it).
+    pub fn update(&self, x: &[Vec3], tolerance: f64) -> bool {
+        let mut state = self.state();
+        let t = state.t;
+        let m = self.obstacles.len();
+        let mut converged = true;
+        for (a, k, d, _, _) in self.pairs(x, t) {
+            let rho = self.stiffness[a];
+            let lambda = &mut state.multipliers[a * m + k];
+            let next = (*lambda - rho * d).max(0.0);
+            if (next - *lambda).abs() > rho * tolerance {
+                converged = false;
+            }
+            *lambda = next;
+        }
+        converged
+    }
+
+    /// Contact force `lambda grad d` on every mesh vertex (`num_vertices` entries) at `x`.
+    /// After a converged [`Contact::update`] the multipliers are exactly the forces of the
+    /// subproblem just solved, so these balance the other forces at `x`.
+    pub fn vertex_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
+        let state = self.state();
+        let m = self.obstacles.len();
+        let mut forces = vec![Vec3::zeros(); x.len()];
+        for (a, k, _, n, _) in self.pairs(x, state.t) {
+            forces[self.vertices[a]] += state.multipliers[a * m + k] * n;
+        }
+        forces
+    }
+
+    /// Total force (from the multipliers, as [`Contact::vertex_forces`]), active vertices
+    /// (a positive multiplier) and largest penetration at `x`.
+    pub fn summary(&self, x: &[Vec3]) -> ContactSummary {
+        let state = self.state();
+        let m = self.obstacles.len();
+        let mut summary = ContactSummary::default();
+        let mut active = vec![false; self.vertices.len()];
+        for (a, k, d, n, _) in self.pairs(x, state.t) {
+            let f = state.multipliers[a * m + k];
+            summary.force += f * n;
+            active[a] |= f > 0.0;
+            summary.max_penetration = summary.max_penetration.max(-d);
+        }
+        summary.active_vertices = active.iter().filter(|&&b| b).count();
+        summary
+    }
+}
+
+impl EnergyTerm for Contact {
+    fn name(&self) -> &'static str {
+        "contact"
+    }
+
+    /// One 3x3 block per candidate vertex (the obstacles' contributions summed), column-major.
+    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        self.vertices
+            .iter()
+            .flat_map(|&v| (0..3).flat_map(move |c| (0..3).map(move |r| (3 * v + r, 3 * v + c))))
+            .collect()
+    }
+
+    /// `sum psi(d)`; gradient `-f grad d` and Hessian `rho grad d grad d^T - f Hess d` with
+    /// `f = max(0, lambda - rho d)`, on pairs with `lambda - rho d >= 0` (at the kink the
+    /// active branch is taken, so a body resting exactly on an obstacle is supported from
+    /// the first Newton step).
+    fn evaluate(
+        &self,
+        x: &[Vec3],
+        _load: f64,
+        mut gradient: Option<&mut [f64]>,
+        mut hessian: Option<&mut [f64]>,
+    ) -> Result<f64, SolverError> {
+        let (multipliers, t) = {
+            let state = self.state();
+            (state.multipliers.clone(), state.t)
+        };
+        if let Some(h) = hessian.as_deref_mut() {
+            h.fill(0.0);
+        }
+        let m = self.obstacles.len();
+        let mut energy = 0.0;
+        for (a, k, d, n, hd) in self.pairs(x, t) {
+            let rho = self.stiffness[a];
+            let lambda = multipliers[a * m + k];
+            let s = lambda - rho * d;
+            let f = s.max(0.0);
+            energy += (f * f - lambda * lambda) / (2.0 * rho);
+            if s < 0.0 {
+                continue;
+            }
+            let v = self.vertices[a];
+            if let Some(g) = gradient.as_deref_mut() {
+                for c in 0..3 {
+                    g[3 * v + c] -= f * n[c];
+                }
+            }
+            if let Some(h) = hessian.as_deref_mut() {
+                let block = rho * n * n.transpose() - f * hd;
+                for c in 0..3 {
+                    for r in 0..3 {
+                        h[9 * a + 3 * c + r] += block[(r, c)];
+                    }
+                }
+            }
+        }
+        if !energy.is_finite() {
+            return Err(SolverError::NonFinite("the contact energy"));
+        }
+        Ok(energy)
+    }
+}

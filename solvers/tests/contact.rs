@@ -1,0 +1,270 @@
+//! Frictionless contact against rigid obstacles (augmented Lagrangian with projected
+//! multiplier updates, sec. 8.3 of Francu et al. 2021): a block resting on the ground, a
+//! ball bouncing off it, a block squeezed between cylinders.
+
+mod common;
+
+use common::plane;
+use isochor_mesh::generate::{ball, box_grid};
+use isochor_mesh::{TetMesh, Vec3};
+use isochor_solvers::{
+    Dirichlet, Load, Material, Method, Motion, Obstacle, Problem, Settings, Shape, Simulation,
+    Stepping,
+};
+
+const G: f64 = 9.8;
+
+fn ground() -> Obstacle {
+    Obstacle::fixed(Shape::HalfSpace {
+        point: Vec3::zeros(),
+        normal: Vec3::z(),
+    })
+}
+
+/// Penetration tolerance of the default settings for `mesh`.
+fn tolerance(mesh: &TetMesh) -> f64 {
+    let (lo, hi) = mesh.bounding_box();
+    Settings::default().contact_tolerance * (hi - lo).norm()
+}
+
+fn volume(mesh: &TetMesh, x: &[Vec3]) -> f64 {
+    (0..mesh.num_tets()).map(|e| mesh.volume_at(e, x)).sum()
+}
+
+/// A 0.1 m cube of 3^3 cells standing on the ground under gravity, its bottom face held
+/// sideways only (so the stiffness is regular in x and y), loaded in two steps.
+fn resting_block(method: Method, nu: f64) -> Problem {
+    let mesh = box_grid(Vec3::zeros(), Vec3::repeat(0.1), [3, 3, 3]).unwrap();
+    let bottom = plane(&mesh, 2, 0.0);
+    Problem {
+        mesh,
+        method,
+        material: Material::from_young_poisson(100e3, nu, 1000.0).unwrap(),
+        zones: None,
+        dirichlet: vec![Dirichlet {
+            vertices: bottom,
+            axes: [true, true, false],
+            motion: Motion::Fixed,
+        }],
+        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G))],
+        obstacles: vec![ground()],
+    }
+}
+
+#[test]
+fn resting_block_carries_its_weight_without_penetrating() {
+    // Every method, and zero-compliance volume constraints (nu = 0.5) too. (Not mixed-p0 at
+    // nu = 0.5: six element constraints per cell against three DOFs per vertex lock it.)
+    let cases = Method::ALL
+        .into_iter()
+        .map(|m| (m, 0.45))
+        .chain([(Method::MixedP1, 0.5), (Method::MixedP1Log, 0.5)]);
+    for (method, nu) in cases {
+        let problem = resting_block(method, nu);
+        let weight = G * 1000.0 * problem.mesh.rest_volume();
+        let tol = tolerance(&problem.mesh);
+        let mut sim = Simulation::new(problem, Settings::default()).unwrap();
+        let scale = sim.force_scale().unwrap();
+        let summary = sim
+            .run(Stepping::QuasiStatic { steps: 2 }, |_| {})
+            .unwrap_or_else(|e| panic!("{method}: {e}"));
+        let last = summary.reports.last().unwrap();
+        let force = last.contact.force;
+        let residual = last.force_residual;
+        assert!(
+            (force.z - weight).abs() <= 10.0 * residual.max(1e-9 * scale),
+            "{method}: contact force {force} against weight {weight} (residual {residual:e})"
+        );
+        assert!(force.x.abs() + force.y.abs() < 1e-12 * weight);
+        assert!(last.contact.max_penetration <= tol, "{method}");
+        assert_eq!(
+            last.contact.active_vertices, 16,
+            "{method}: the bottom face"
+        );
+        assert!(sim.contact_multipliers().iter().all(|&l| l >= 0.0));
+        let lowest = summary
+            .final_state
+            .positions
+            .iter()
+            .map(|p| p.z)
+            .fold(f64::INFINITY, f64::min);
+        assert!(lowest >= -tol, "{method}: lowest vertex at {lowest}");
+    }
+}
+
+/// A ball of radius 0.1 m (`48 res^3` tets) with shear modulus `mu`, `gap` above the ground.
+fn dropped_ball(res: usize, method: Method, mu: f64, nu: f64, gap: f64) -> Problem {
+    let mut mesh = ball(0.1, res).unwrap();
+    mesh = TetMesh::new(
+        mesh.positions()
+            .iter()
+            .map(|p| p + Vec3::new(0.0, 0.0, 0.1 + gap))
+            .collect(),
+        mesh.tets().to_vec(),
+    )
+    .unwrap();
+    let young = 2.0 * mu * (1.0 + nu);
+    Problem {
+        mesh,
+        method,
+        material: Material::from_young_poisson(young, nu, 1000.0).unwrap(),
+        zones: None,
+        dirichlet: Vec::new(),
+        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G))],
+        obstacles: vec![ground()],
+    }
+}
+
+#[test]
+fn dropped_ball_bounces_and_releases_every_contact() {
+    // Stiffer than the scene's 16 kPa so that the coarse ball lets go within 120 frames.
+    let problem = dropped_ball(2, Method::Standard, 160e3, 0.45, 0.01);
+    let tol = tolerance(&problem.mesh);
+    let masses = 1000.0 * problem.mesh.rest_volume();
+    let mut sim = Simulation::new(problem, Settings::default()).unwrap();
+    let mut first_contact = None;
+    let mut released = None;
+    let mut upward = false;
+    let mut max_penetration: f64 = 0.0;
+    let mut negative = false;
+    sim.run(
+        Stepping::ImplicitEuler {
+            dt: 1e-3,
+            frames: 120,
+        },
+        |frame| {
+            let c = frame.report.contact;
+            max_penetration = max_penetration.max(c.max_penetration);
+            negative |= frame.contact_forces.iter().any(|f| f.z < 0.0);
+            if c.active_vertices > 0 && first_contact.is_none() {
+                first_contact = Some(frame.index);
+            }
+            if first_contact.is_some() && c.active_vertices == 0 && released.is_none() {
+                released = Some(frame.index);
+                let momentum: f64 = frame.state.velocities.iter().map(|v| v.z).sum();
+                upward = momentum > 0.0;
+            }
+        },
+    )
+    .unwrap();
+    let first = first_contact.expect("the ball reaches the ground");
+    let released = released.expect("the ball leaves the ground");
+    assert!(released > first);
+    assert!(upward, "the ball moves up when it lets go ({masses} kg)");
+    assert!(max_penetration <= tol, "penetration {max_penetration:e}");
+    assert!(!negative, "a contact force pulled");
+    assert!(sim.contact_multipliers().iter().all(|&l| l == 0.0));
+}
+
+#[test]
+fn zonal_keeps_the_volume_through_the_impact() {
+    let problem = dropped_ball(2, Method::Zonal, 16e3, 0.45, 0.001);
+    let mesh = problem.mesh.clone();
+    let rest = mesh.rest_volume();
+    let mut sim = Simulation::new(problem, Settings::default()).unwrap();
+    let mut worst: f64 = 0.0;
+    let mut touched = false;
+    sim.run(
+        Stepping::ImplicitEuler {
+            dt: 1e-3,
+            frames: 40,
+        },
+        |frame| {
+            touched |= frame.report.contact.active_vertices > 0;
+            worst = worst.max((volume(&mesh, &frame.state.positions) / rest - 1.0).abs());
+        },
+    )
+    .unwrap();
+    assert!(touched);
+    assert!(worst <= 1e-8, "volume drift {worst:e}");
+}
+
+#[test]
+fn incompressible_block_squeezed_between_moving_cylinders() {
+    // Two cylinders along y press the bottom and top of a cube at nu = 0.5 (C = 0) by 10 mm
+    // each; the planes x = 0.05 and y = 0 are held in x and y only.
+    let mesh = box_grid(Vec3::zeros(), Vec3::repeat(0.1), [4, 4, 4]).unwrap();
+    let tol = tolerance(&mesh);
+    let hold = |axis: usize, value: f64| Dirichlet {
+        vertices: plane(&mesh, axis, value),
+        axes: [axis == 0, axis == 1, false],
+        motion: Motion::Fixed,
+    };
+    let dirichlet = vec![hold(0, 0.05), hold(1, 0.0)];
+    let cylinder = |z: f64, dz: f64| Obstacle {
+        shape: Shape::Cylinder {
+            point: Vec3::new(0.05, 0.0, z),
+            axis: Vec3::y(),
+            radius: 0.05,
+        },
+        translate: Vec3::new(0.0, 0.0, dz),
+    };
+    let problem = Problem {
+        mesh,
+        method: Method::MixedP1,
+        material: Material::from_young_poisson(100e3, 0.5, 1000.0).unwrap(),
+        zones: None,
+        dirichlet,
+        loads: Vec::new(),
+        obstacles: vec![cylinder(-0.05, 0.01), cylinder(0.15, -0.01)],
+    };
+    let mut sim = Simulation::new(problem, Settings::default()).unwrap();
+    let summary = sim.run(Stepping::QuasiStatic { steps: 2 }, |_| {}).unwrap();
+    let last = summary.reports.last().unwrap();
+    let x = &summary.final_state.positions;
+    assert!(last.contact.max_penetration <= tol);
+    assert!(last.contact.active_vertices >= 2);
+    let squeeze: f64 = sim.contact_multipliers().iter().sum();
+    assert!(squeeze > 0.0);
+    assert!(sim.contact_multipliers().iter().all(|&l| l >= 0.0));
+    // The holds react in x and y only: the cylinders' vertical forces cancel.
+    assert!(
+        last.contact.force.z.abs() <= 1e-6 * squeeze,
+        "{}",
+        last.contact.force
+    );
+    // Under the cylinders' lowest and highest lines, the cube is 80 mm thick.
+    let rest = sim.mesh().positions();
+    let middle: Vec<f64> = (0..x.len())
+        .filter(|&v| (rest[v].x - 0.05).abs() < 1e-9)
+        .map(|v| x[v].z)
+        .collect();
+    let top = middle.iter().copied().fold(f64::MIN, f64::max);
+    let bottom = middle.iter().copied().fold(f64::MAX, f64::min);
+    assert!(
+        (top - 0.09).abs() <= tol && (bottom - 0.01).abs() <= tol,
+        "{bottom} to {top}"
+    );
+}
+
+#[test]
+fn bad_obstacles_and_unconverged_contact_are_errors() {
+    let mut problem = resting_block(Method::Standard, 0.45);
+    problem.obstacles.push(Obstacle::fixed(Shape::Sphere {
+        center: Vec3::zeros(),
+        radius: -1.0,
+    }));
+    assert!(Simulation::new(problem, Settings::default()).is_err());
+
+    // A block pushed 10 mm into the ground with a single multiplier update.
+    let mut problem = resting_block(Method::Standard, 0.45);
+    problem.obstacles = vec![Obstacle {
+        shape: Shape::HalfSpace {
+            point: Vec3::zeros(),
+            normal: Vec3::z(),
+        },
+        translate: Vec3::new(0.0, 0.0, 0.01),
+    }];
+    let settings = Settings {
+        max_contact_iterations: 1,
+        ..Settings::default()
+    };
+    let mut sim = Simulation::new(problem, settings).unwrap();
+    let failure = sim
+        .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
+        .unwrap_err();
+    assert!(matches!(
+        failure.error,
+        isochor_solvers::SolverError::ContactNotConverged { iterations: 1, .. }
+    ));
+}
