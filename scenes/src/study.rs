@@ -11,7 +11,7 @@
 //! `|probe - reference| / |reference|`; for 1% and 5% the fastest run within them is marked.
 //! Outputs: `study.csv`, `study.md` and the log-log plot `study.png` of error against time.
 
-use crate::output::{write_file, OutputDir};
+use crate::output::{finish_plot, plot_error, write_file, OutputDir};
 use crate::overrides::{parse_sweep, Override};
 use crate::result::RunResult;
 use crate::run::{run_scene, RunOptions};
@@ -568,10 +568,6 @@ impl Study {
     }
 }
 
-fn plot_error(path: &Path, e: impl std::fmt::Display) -> SceneError {
-    SceneError::Output(format!("{}: {e}", path.display()))
-}
-
 /// Log-log plot of error (percent) against wall time, one curve per method, with the error
 /// levels as dashed lines and the fastest run for each level circled.
 pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
@@ -706,15 +702,13 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
                 .map_err(|e| plot_error(path, e))?;
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| plot_error(path, e))?;
-    root.present().map_err(|e| plot_error(path, e))?;
-    Ok(())
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::UpperRight,
+        true,
+        path,
+    )
 }
 
 #[cfg(test)]

@@ -27,7 +27,31 @@ pub(crate) fn register_font() {
     });
 }
 
-fn plot_error(path: &Path, e: impl std::fmt::Display) -> SceneError {
+/// Draws the legend at `position` (when `legend`) and writes the PNG: the end of every plot.
+pub(crate) fn finish_plot<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    root: &DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>,
+    position: SeriesLabelPosition,
+    legend: bool,
+    path: &Path,
+) -> Result<(), SceneError>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+{
+    if legend {
+        chart
+            .configure_series_labels()
+            .position(position)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_error(path, e))?;
+    }
+    root.present().map_err(|e| plot_error(path, e))
+}
+
+pub(crate) fn plot_error(path: &Path, e: impl std::fmt::Display) -> SceneError {
     SceneError::Output(format!("{}: {e}", path.display()))
 }
 
@@ -123,16 +147,14 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
         }
         offset += s.force_residuals.len();
     }
-    if labelled.iter().any(|&l| l) {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| plot_error(path, e))?;
-    }
-    root.present().map_err(|e| plot_error(path, e))?;
-    Ok(())
+    let legend = labelled.iter().any(|&l| l);
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::MiddleRight,
+        legend,
+        path,
+    )
 }
 
 /// Energies against time.
@@ -181,14 +203,13 @@ pub fn plot_energy(path: &Path, title: &str, history: &[StepRecord]) -> Result<(
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| plot_error(path, e))?;
-    root.present().map_err(|e| plot_error(path, e))?;
-    Ok(())
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::MiddleRight,
+        true,
+        path,
+    )
 }
 
 #[cfg(test)]
