@@ -67,6 +67,8 @@ pub struct SaddleNewton {
     compliance: Option<SparseColMat<usize, f64>>,
     /// Diagonal and off-diagonal action of `C` on multipliers.
     compliance_entries: Vec<(usize, usize, f64)>,
+    /// `(row, dof)` of the constraint Jacobian entries, fetched once.
+    jacobian_pattern: Vec<(usize, usize)>,
 }
 
 fn linear_error(e: crate::linear::LinearError) -> SolverError {
@@ -156,6 +158,7 @@ impl SaddleNewton {
             linear,
             compliance,
             compliance_entries,
+            jacobian_pattern: constraints.jacobian_pattern(),
         })
     }
 
@@ -179,7 +182,7 @@ impl SaddleNewton {
         let constraints = system.model.constraints.clone().expect("checked in new");
         let eval = system.energy(x, load, true)?;
         let mut sigma = eval.gradient;
-        let pattern = constraints.jacobian_pattern();
+        let pattern = &self.jacobian_pattern;
         let mut g = vec![0.0; pattern.len()];
         constraints.jacobian_values(x, &mut g)?;
         for (&(row, dof), v) in pattern.iter().zip(&g) {
@@ -218,7 +221,7 @@ impl SaddleNewton {
             let eval = system.assemble(x, target.load, Some(p))?;
             let jacobian = system.jacobian.as_ref().expect("constrained system");
             let mut sigma = eval.gradient;
-            let pattern = constraints.jacobian_pattern();
+            let pattern = &self.jacobian_pattern;
             for (&(row, dof), v) in pattern.iter().zip(&system.jacobian_values) {
                 sigma[dof] += v * p[row];
             }
