@@ -6,7 +6,7 @@ use isochor_constraints::{ConstraintSet, Measure, NodalCompliance, NodalConstrai
 use isochor_energies::{standard_neo_hookean, Epidermis, Lame};
 use isochor_mesh::Vec3;
 use isochor_solvers::terms::{
-    AugmentedConstraints, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure, Inertia,
+    AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure, Inertia,
 };
 use isochor_validation::strategies::{deformed_box, Deformed};
 use nalgebra::DMatrix;
@@ -93,6 +93,11 @@ fn terms(deformed: &Deformed, seed: f64) -> Vec<Box<dyn EnergyTerm>> {
     inertia.begin_step(mesh.positions(), &velocities);
     let material = Arc::new(standard_neo_hookean(Lame::new(1.0, 10.0).unwrap()).unwrap());
     vec![
+        Box::new(DeadLoad::traction(
+            mesh.positions(),
+            &faces,
+            Vec3::new(seed, -1.0, 0.5),
+        )),
         Box::new(FollowerPressure::new(faces, 2.0 * seed)),
         Box::new(augmented),
         Box::new(inertia),
