@@ -23,6 +23,8 @@ pub struct StepRecord {
     pub step_lengths: Vec<f64>,
     /// Line-search backtracks per iteration.
     pub backtracks: Vec<usize>,
+    /// Diagonal shift added to the stiffness per iteration (0 when none was needed).
+    pub shifts: Vec<f64>,
     /// Whole-body volume change (deformed/rest - 1) of the accepted state.
     pub volume_change: f64,
     /// Inverted tets in the accepted state.
@@ -96,6 +98,11 @@ pub struct RunResult {
     /// Per-step records (left out of `--json`; written to the CSV logs).
     #[serde(skip)]
     pub history: Vec<StepRecord>,
+    /// The iterations of the failed step, if any (written to `iterations.csv` after the
+    /// accepted steps, to show how it failed; its state fields are those of the last
+    /// accepted state).
+    #[serde(skip)]
+    pub failed: Option<StepRecord>,
     /// Whether the scene is dynamic.
     #[serde(skip)]
     pub dynamic: bool,

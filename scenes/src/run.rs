@@ -8,7 +8,7 @@ use crate::result::{ContactRecord, RunResult, StepRecord};
 use crate::scene::Scene;
 use crate::{problem, SceneError};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use isochor_solvers::{Energies, Frame, Simulation, State};
+use isochor_solvers::{Energies, Frame, Simulation, State, StepReport};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -76,7 +76,13 @@ pub fn run_scene(
     let mut write_error: Option<SceneError> = None;
     let start = Instant::now();
     let outcome = sim.run(built.stepping, |frame: &Frame<'_>| {
-        history.push(record(&mesh, frame));
+        history.push(record(
+            &mesh,
+            frame.state,
+            frame.report,
+            frame.inverted_tets,
+            frame.energies,
+        ));
         last_pressures.clone_from(&frame.tet_pressures);
         last_energies = frame.energies;
         if let (Some(w), None) = (frames.as_mut(), write_error.as_ref()) {
@@ -103,7 +109,7 @@ pub fn run_scene(
 
     let (final_state, reports, wall_time, max_inverted, error, failed_step): (
         State,
-        _,
+        Vec<StepReport>,
         _,
         _,
         _,
@@ -129,6 +135,10 @@ pub fn run_scene(
             )
         }
     };
+    let failed = failed_step.and(reports.last()).map(|report| {
+        let inverted = history.last().map_or(0, |s| s.inverted_tets);
+        record(&mesh, &final_state, report, inverted, last_energies)
+    });
     let constraint_residual = reports.last().map_or(0.0, |r| r.constraint_residual);
     let input = ProbeInput {
         mesh: &mesh,
@@ -169,6 +179,7 @@ pub fn run_scene(
         failed_step,
         overrides: options.overrides.clone(),
         history,
+        failed,
         dynamic: scene.is_dynamic(),
     };
     let written = match out {
@@ -184,9 +195,14 @@ pub fn run_scene(
     Ok((result, written))
 }
 
-/// The record of one accepted step.
-fn record(mesh: &isochor_mesh::TetMesh, frame: &Frame<'_>) -> StepRecord {
-    let report = frame.report;
+/// The record of one step: its iterations and the state it ended in.
+fn record(
+    mesh: &isochor_mesh::TetMesh,
+    state: &State,
+    report: &StepReport,
+    inverted_tets: usize,
+    energies: Energies,
+) -> StepRecord {
     let mut force: Vec<f64> = report.iterations.iter().map(|i| i.force_residual).collect();
     let mut constraint: Vec<f64> = report
         .iterations
@@ -196,19 +212,20 @@ fn record(mesh: &isochor_mesh::TetMesh, frame: &Frame<'_>) -> StepRecord {
     force.push(report.force_residual);
     constraint.push(report.constraint_residual);
     StepRecord {
-        step: frame.index,
-        t: frame.state.t,
+        step: report.step,
+        t: report.t,
         newton_iterations: report.newton_iterations(),
         converged: report.converged,
         force_residuals: force,
         constraint_residuals: constraint,
         step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
         backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
-        volume_change: mesh.total_volume_at(&frame.state.positions) / mesh.rest_volume() - 1.0,
-        inverted_tets: frame.inverted_tets,
-        kinetic_energy: frame.energies.kinetic,
-        elastic_energy: frame.energies.elastic,
-        external_energy: frame.energies.external,
+        shifts: report.iterations.iter().map(|i| i.regularization).collect(),
+        volume_change: mesh.total_volume_at(&state.positions) / mesh.rest_volume() - 1.0,
+        inverted_tets,
+        kinetic_energy: energies.kinetic,
+        elastic_energy: energies.elastic,
+        external_energy: energies.external,
         wall_time_s: report.wall_time.as_secs_f64(),
         contact: ContactRecord {
             force: report.contact.force.into(),

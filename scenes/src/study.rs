@@ -6,9 +6,11 @@
 //! runs of the best-converging method (the one whose extrapolation moves least from its
 //! finest value, unless `--reference METHOD` names it): with `f = f_inf + C h^p`, the observed
 //! order `p` solves `(f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p)`. Its error
-//! estimate is `|f_inf - f3|`, and, with a fourth run, also the difference between the
-//! extrapolations of the last two triples. The error of a run is
-//! `|probe - reference| / |reference|`; for 1% and 5% the fastest run within them is marked.
+//! estimate is the change of the extrapolation when the finest run is added (the difference
+//! between the limits of the last two triples), or, with only three runs, the conservative
+//! `|f_inf - f3|`. The error of a run is `|probe - reference| / |reference|`; for 1% and 5%
+//! the fastest run within them is marked, with a warning when the reference is not known to
+//! better than the level.
 //! Outputs: `study.csv`, `study.md` and the log-log plot `study.png` of error against time.
 
 use crate::output::{finish_plot, plot_error, write_file, OutputDir};
@@ -101,9 +103,9 @@ pub struct Richardson {
 }
 
 impl Richardson {
-    /// The estimated error of the limit: the larger of the two gaps.
+    /// The estimated error of the limit: the previous gap, or the finest gap without one.
     pub fn estimate(&self) -> f64 {
-        self.finest_gap.max(self.previous_gap.unwrap_or(0.0))
+        self.previous_gap.unwrap_or(self.finest_gap)
     }
 
     /// [`Richardson::estimate`] relative to the limit.
@@ -439,6 +441,18 @@ impl Study {
             }
         }
         for level in LEVELS {
+            if let Some(r) = self
+                .reference
+                .as_ref()
+                .filter(|r| r.relative_estimate() > level)
+            {
+                let _ = writeln!(
+                    s,
+                    "error <= {:.0}%: not resolved (the reference is uncertain by {:.2}%)",
+                    100.0 * level,
+                    100.0 * r.relative_estimate()
+                );
+            }
             let Some(best) = self.fastest(level, None) else {
                 let _ = writeln!(s, "error <= {:.0}%: no run", 100.0 * level);
                 continue;

@@ -42,7 +42,8 @@ pub struct Energies {
     pub kinetic: f64,
     /// Stored elastic energy (including epidermis).
     pub elastic: f64,
-    /// Potential of the external loads (gravity, tractions, pressure).
+    /// Potential of the external loads (gravity, tractions, pressure) relative to the rest
+    /// state: minus their work on the displacements.
     pub external: f64,
 }
 
@@ -232,12 +233,15 @@ impl Simulation {
                     .sum::<f64>(),
             ..Energies::default()
         };
+        let rest = self.model.mesh.positions();
         for term in &self.model.terms {
             let e = term
                 .evaluate(&state.positions, 1.0, None, None)
                 .unwrap_or(f64::NAN);
             if term.is_external() {
-                energies.external += e;
+                // Relative to rest: minus the work of the loads on the displacements.
+                let e0 = term.evaluate(rest, 1.0, None, None).unwrap_or(f64::NAN);
+                energies.external += e - e0;
             } else {
                 energies.elastic += e;
             }
@@ -310,6 +314,7 @@ impl Simulation {
             if let Some(inertia) = &mut system.inertia {
                 inertia.begin_step(&self.state.positions, &self.state.velocities);
             }
+            let contact_start = system.model.contact.as_ref().map(|c| c.snapshot());
             if let Some(contact) = &system.model.contact {
                 contact.set_time(fraction);
             }
@@ -367,6 +372,10 @@ impl Simulation {
             report.wall_time = step_start.elapsed();
             reports.push(report);
             if let Err(e) = result {
+                // Back to the last accepted step, contact multipliers included.
+                if let (Some(contact), Some(start)) = (&system.model.contact, contact_start) {
+                    contact.restore(start);
+                }
                 return Err(fail(e, step, &self.state, &reports));
             }
             let velocities = match dt {

@@ -267,4 +267,7 @@ fn bad_obstacles_and_unconverged_contact_are_errors() {
         failure.error,
         isochor_solvers::SolverError::ContactNotConverged { iterations: 1, .. }
     ));
+    // The failed step is rolled back: the rest state, and the multipliers it started with.
+    assert_eq!(failure.last_state.positions, sim.state().positions);
+    assert!(sim.contact_multipliers().iter().all(|&l| l == 0.0));
 }

@@ -6,10 +6,10 @@ use std::fmt::Write;
 use std::path::Path;
 
 /// `iterations.csv`: one row per Newton iteration of every step (the final residuals of a
-/// step have an empty `step_length`).
+/// step have empty `step_length`, `backtracks` and `shift`).
 pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,iteration,force_residual,constraint_residual,step_length,backtracks\n",
+        "step,t,iteration,force_residual,constraint_residual,step_length,backtracks,shift\n",
     );
     for s in history {
         for (i, (f, c)) in s
@@ -18,11 +18,18 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
             .zip(&s.constraint_residuals)
             .enumerate()
         {
-            let (len, back) = match (s.step_lengths.get(i), s.backtracks.get(i)) {
-                (Some(l), Some(b)) => (format!("{l:e}"), b.to_string()),
-                _ => (String::new(), String::new()),
-            };
-            let _ = writeln!(out, "{},{:e},{i},{f:e},{c:e},{len},{back}", s.step, s.t);
+            let (len, back, shift) =
+                match (s.step_lengths.get(i), s.backtracks.get(i), s.shifts.get(i)) {
+                    (Some(l), Some(b), Some(r)) => {
+                        (format!("{l:e}"), b.to_string(), format!("{r:e}"))
+                    }
+                    _ => Default::default(),
+                };
+            let _ = writeln!(
+                out,
+                "{},{:e},{i},{f:e},{c:e},{len},{back},{shift}",
+                s.step, s.t
+            );
         }
     }
     super::write_file(path, out.as_bytes())

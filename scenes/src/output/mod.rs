@@ -13,21 +13,28 @@ pub use frames::FrameWriter;
 pub(crate) use plots::{finish_plot, plot_error, register_font};
 pub use plots::{plot_energy, plot_residuals};
 
-use crate::result::RunResult;
+use crate::result::{RunResult, StepRecord};
 use crate::SceneError;
 use std::path::Path;
 
 /// Writes `summary.json`, the CSV logs and (if `plots`) the PNG plots of a finished run into
-/// `dir` (the temporary output folder).
+/// `dir` (the temporary output folder). The iteration log and the residual plot include the
+/// failed step of a run that failed.
 pub fn write_run_outputs(dir: &Path, result: &RunResult, plots: bool) -> Result<(), SceneError> {
     let json = serde_json::to_string_pretty(&result.to_json())
         .map_err(|e| SceneError::Output(e.to_string()))?;
     write_file(&dir.join("summary.json"), json.as_bytes())?;
-    write_iterations_csv(&dir.join("iterations.csv"), &result.history)?;
+    let attempted: Vec<StepRecord> = result
+        .history
+        .iter()
+        .chain(&result.failed)
+        .cloned()
+        .collect();
+    write_iterations_csv(&dir.join("iterations.csv"), &attempted)?;
     write_steps_csv(&dir.join("steps.csv"), &result.history)?;
     if plots {
         let title = format!("{} ({})", result.scene, result.method);
-        plot_residuals(&dir.join("residuals.png"), &title, &result.history)?;
+        plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;
         if result.dynamic {
             plot_energy(&dir.join("energy.png"), &title, &result.history)?;
         }

@@ -21,10 +21,12 @@
 //! `|E| <= delta` (relative to the scaled matrix), so by Weyl's inequality the signs of
 //! `D` are the inertia of `A` except for eigenvalues of `A` within `delta` of zero.
 //! `K` is positive definite on the null space of `G` exactly when `A` has `n` positive
-//! eigenvalues (`rank G` negative, the rest zero), so fewer than `n` positive pivots is
-//! [`LinearError::WrongInertia`], which asks the caller to shift `K` and retry.
-//! Near-zero eigenvalues of `A` may turn positive under `E` and hide a wrong inertia
-//! when `C = 0`; with `C > 0` and no replaced pivots the check is exact. (Regularizing
+//! eigenvalues (`rank G` negative, the rest zero). Each replaced pivot is a rank-one change
+//! of `A`, which moves at most one eigenvalue across zero (interlacing), so with `r`
+//! replaced pivots fewer than `n - r` positive pivots proves a wrong inertia:
+//! [`LinearError::WrongInertia`], which asks the caller to shift `K` and retry. Between
+//! `n - r` and `n` the factor cannot tell and is accepted (the line search still guards the
+//! step); with `C > 0` and no replaced pivots the check is exact. (Regularizing
 //! with the expected signs `+1`/`-1` instead would also flip large pivots of the wrong
 //! sign, which are legitimate when `K` is indefinite along the range of `G^T`.)
 //! Sparse `LU` is the fallback.
@@ -389,10 +391,9 @@ impl KktSolver {
             Ok(()) => {
                 let pivots = self.pivots()?;
                 let (inertia, regularized) = match self.options.pivot_regularization {
-                    // The factor is exact for A + E with |E| <= delta diagonal (Weyl):
-                    // pivot signs give the inertia of A except for its near-zero
-                    // eigenvalues, which can only add positive pivots. Replaced pivots
-                    // are exactly +-delta.
+                    // The factor is exact for A + E, E diagonal with one entry per
+                    // replaced pivot (those are exactly +-delta): the inertia of A is
+                    // that of the pivots up to one sign per replaced pivot.
                     Some(r) => (
                         count_inertia(&pivots, 0.0),
                         pivots.iter().filter(|d| d.abs() == r.delta).count(),
@@ -400,7 +401,7 @@ impl KktSolver {
                     None => (count_inertia(&pivots, self.options.zero_pivot_tolerance), 0),
                 };
                 if inertia.zero == 0 {
-                    if inertia.positive < n {
+                    if inertia.positive + regularized < n {
                         return Err(wrong_inertia(inertia, n, m));
                     }
                     self.factor = Factor::Ldlt;

@@ -37,8 +37,9 @@ pub struct ContactSummary {
 
 /// Multipliers, one per (candidate vertex, obstacle) pair, vertex-major, and the obstacles'
 /// motion parameter.
-#[derive(Debug)]
-struct ContactState {
+/// The multipliers and obstacle time of a [`Contact`], to roll a failed step back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactState {
     multipliers: Vec<f64>,
     t: f64,
 }
@@ -92,6 +93,16 @@ impl Contact {
     /// The multipliers (normal force magnitudes), vertex-major over the obstacles.
     pub fn multipliers(&self) -> Vec<f64> {
         self.state().multipliers.clone()
+    }
+
+    /// A copy of the multipliers and the obstacle time.
+    pub fn snapshot(&self) -> ContactState {
+        self.state().clone()
+    }
+
+    /// Restores a [`Contact::snapshot`].
+    pub fn restore(&self, snapshot: ContactState) {
+        *self.state() = snapshot;
     }
 
     /// `(candidate index, obstacle index, d, grad d, Hess d)` of every pair at `x`.

@@ -12,7 +12,7 @@ mod inertia;
 mod pressure;
 
 pub use augmented::AugmentedConstraints;
-pub use contact::{Contact, ContactSummary};
+pub use contact::{Contact, ContactState, ContactSummary};
 pub use dead_load::DeadLoad;
 pub use elastic::Elastic;
 pub use epidermis::EpidermisTerm;
