@@ -345,6 +345,14 @@ impl Study {
         Ok(())
     }
 
+    /// Whether the reference is known to within `level` (relative), so that errors at that
+    /// level mean something.
+    pub fn resolves(&self, level: f64) -> bool {
+        self.reference
+            .as_ref()
+            .is_some_and(|r| r.relative_estimate() <= level)
+    }
+
     /// Index of the fastest converged run with error at most `level`, of `method` if given.
     pub fn fastest(&self, level: f64, method: Option<&str>) -> Option<usize> {
         self.runs
@@ -441,17 +449,14 @@ impl Study {
             }
         }
         for level in LEVELS {
-            if let Some(r) = self
-                .reference
-                .as_ref()
-                .filter(|r| r.relative_estimate() > level)
-            {
+            if let Some(r) = self.reference.as_ref().filter(|_| !self.resolves(level)) {
                 let _ = writeln!(
                     s,
                     "error <= {:.0}%: not resolved (the reference is uncertain by {:.2}%)",
                     100.0 * level,
                     100.0 * r.relative_estimate()
                 );
+                continue;
             }
             let Some(best) = self.fastest(level, None) else {
                 let _ = writeln!(s, "error <= {:.0}%: no run", 100.0 * level);
@@ -692,7 +697,7 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
             }))
             .map_err(|e| plot_error(path, e))?;
     }
-    for level in LEVELS {
+    for level in LEVELS.into_iter().filter(|&l| study.resolves(l)) {
         if let Some(i) = study.fastest(level, None) {
             let r = &study.runs[i];
             let (t, e) = (
