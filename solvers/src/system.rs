@@ -121,7 +121,7 @@ impl<'m> System<'m> {
             let g = with_gradient.then_some(gradient.as_mut_slice());
             let e = term.evaluate(x, load, g, None)?;
             energy += e;
-            magnitude += e.abs();
+            magnitude += e.abs() + term.rounding_scale();
         }
         self.assembly_time += start.elapsed();
         Ok(Evaluation {
@@ -169,7 +169,7 @@ impl<'m> System<'m> {
             rest = tail;
             let e = term.evaluate(x, load, Some(&mut *gradient), Some(mine))?;
             energy += e;
-            magnitude += e.abs();
+            magnitude += e.abs() + term.rounding_scale();
         }
         if let (Some(c), Some(p)) = (&self.model.constraints, multipliers) {
             c.geometric_stiffness_values(x, p, rest)?;

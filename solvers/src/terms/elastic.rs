@@ -17,18 +17,24 @@ pub struct Elastic {
     rest_volumes: Vec<f64>,
     material: Arc<dyn Hyperelastic>,
     project: bool,
+    /// `sum_e V_e max |dP/dF (I)|`, see [`EnergyTerm::rounding_scale`].
+    rounding_scale: f64,
 }
 
 impl Elastic {
     /// The elastic energy of `mesh` with `material`; with `project`, element Hessians are
     /// projected to positive semi-definite (for Newton on displacement-only problems).
     pub fn new(mesh: &TetMesh, material: Arc<dyn Hyperelastic>, project: bool) -> Self {
+        let stiffness = material
+            .pk1_derivative(&Matrix3::identity())
+            .map_or(0.0, |d| d.amax());
         Elastic {
             tets: mesh.tets().to_vec(),
             inverse_rest_shapes: mesh.inverse_rest_shapes().to_vec(),
             rest_volumes: mesh.rest_volumes().to_vec(),
             material,
             project,
+            rounding_scale: stiffness * mesh.rest_volume(),
         }
     }
 
@@ -133,5 +139,9 @@ impl EnergyTerm for Elastic {
             let f = tet::deformation_gradient(&xe, &self.inverse_rest_shapes[e]);
             self.material.is_defined_at(f.determinant())
         })
+    }
+
+    fn rounding_scale(&self) -> f64 {
+        self.rounding_scale
     }
 }

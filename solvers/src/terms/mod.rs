@@ -54,6 +54,14 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
     fn is_external(&self) -> bool {
         false
     }
+
+    /// Size of the quantities the term sums into its energy, constant over a run, beyond
+    /// the energy itself (e.g. `sum_e V_e` times the material's stiffness for an elastic
+    /// energy, whose `mu/2 tr(F^T F)` part does not vanish at rest): energy changes below
+    /// about `1e3 eps` times it are rounding noise to the line search.
+    fn rounding_scale(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Dense `(dof, dof)` pattern of the blocks of an element with the given vertices, in the
