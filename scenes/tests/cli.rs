@@ -304,3 +304,44 @@ fn compare_prints_a_table_and_writes_csv_and_markdown() {
         .contains("| nu |"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A run that fails says so in its exit code and JSON, keeps the accepted steps' outputs, and
+/// logs the failed step's iterations last in `iterations.csv` (with the stiffness shift).
+#[test]
+fn a_failed_run_logs_the_failed_step() {
+    let dir = scratch("failed");
+    let out = dir.join("out");
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "res=1",
+        "--set",
+        "steps=2",
+        "--set",
+        "solver.max_iterations=2",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["converged"], false);
+    assert_eq!(v["failed_step"], 1);
+    let log = std::fs::read_to_string(out.join("iterations.csv")).unwrap();
+    let mut lines = log.lines();
+    assert_eq!(
+        lines.next(),
+        Some("step,t,iteration,force_residual,constraint_residual,step_length,backtracks,shift")
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Two iterations of step 1, then its final residuals (no step length, no shift).
+    assert_eq!(rows.len(), 3, "{log}");
+    assert!(rows.iter().all(|r| r[0] == "1" && r.len() == 8), "{log}");
+    assert!(
+        rows[..2].iter().all(|r| r[7].parse::<f64>().is_ok()),
+        "{log}"
+    );
+    assert_eq!(rows[2][7], "", "{log}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
