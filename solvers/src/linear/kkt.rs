@@ -101,7 +101,7 @@ impl Default for KktOptions {
             pivot_regularization: Some(PivotRegularization::default()),
             zero_pivot_tolerance: 1e-10,
             max_refinement_steps: 10,
-            refinement_tolerance: 1e-14,
+            refinement_tolerance: 1e-10,
             residual_tolerance: 1e-8,
             lu_fallback: true,
         }
