@@ -1,15 +1,16 @@
 //! Tests of the linear-algebra layer against dense nalgebra references, and on a P1-P1
 //! saddle point of a structured tet box at `C = 0` (exactly singular KKT).
 
+mod common;
+
+use common::{p1_box, P1Box};
 use faer::sparse::SparseColMat;
-use isochor_mesh::generate::box_grid;
-use isochor_mesh::Vec3;
 use isochor_solvers::linear::{
     cg, diagonal, minres, relative_residual, saddle_point_diagonal, CholeskySolver,
     IterativeOptions, Jacobi, KktOptions, KktSolver, LinearError, LinearOperator, SaddlePoint,
     ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
 };
-use nalgebra::{DMatrix, DVector, Matrix3};
+use nalgebra::{DMatrix, DVector};
 
 /// Deterministic pseudo-random numbers in [-1, 1) (xorshift).
 struct Rng(u64);
@@ -304,80 +305,20 @@ fn kkt_reports_wrong_inertia_for_negative_curvature_in_the_null_space_of_g() {
     assert!(shift > 1.0);
 }
 
-/// Gradients of the barycentric coordinates of a tet and its unsigned volume.
-fn barycentric_gradients(x: [Vec3; 4]) -> ([Vec3; 4], f64) {
-    let d = Matrix3::from_columns(&[x[1] - x[0], x[2] - x[0], x[3] - x[0]]);
-    let inv = d.try_inverse().expect("non-degenerate tet");
-    let g1 = inv.row(0).transpose();
-    let g2 = inv.row(1).transpose();
-    let g3 = inv.row(2).transpose();
-    ([-(g1 + g2 + g3), g1, g2, g3], d.determinant().abs() / 6.0)
-}
-
-/// A P1-P1 saddle point on a Kuhn box grid, face `x = 0` clamped: `K = L (x) I3` from the
-/// P1 Laplacian, `G` the nodal volume Jacobian (row `j` = sum over the tets incident to
-/// `j` of `grad v_e / 4`, eq. 26-27), anchors at each node's last free DOF.
-struct P1Box {
-    k: SparseColMat<usize, f64>,
-    g: SparseColMat<usize, f64>,
-    anchors: Vec<Option<usize>>,
-}
-
-fn p1_box(cells: [usize; 3]) -> P1Box {
-    let mesh = box_grid(Vec3::zeros(), Vec3::new(4.0, 1.0, 1.0), cells).unwrap();
-    let x = mesh.positions();
-    let nv = x.len();
-    let mut dof = vec![None; 3 * nv];
-    let mut n = 0;
-    for (v, p) in x.iter().enumerate() {
-        if p.x > 1e-12 {
-            for a in 0..3 {
-                dof[3 * v + a] = Some(n);
-                n += 1;
-            }
-        }
-    }
-    let (mut kp, mut kv, mut gp, mut gv) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for tet in mesh.tets() {
-        let xs = tet.map(|v| x[v]);
-        let (grads, vol) = barycentric_gradients(xs);
-        let e = [xs[1] - xs[0], xs[2] - xs[0], xs[3] - xs[0]];
-        let g1 = e[1].cross(&e[2]) / 6.0;
-        let g2 = e[2].cross(&e[0]) / 6.0;
-        let g3 = e[0].cross(&e[1]) / 6.0;
-        let gv_e = [-(g1 + g2 + g3), g1, g2, g3];
-        for a in 0..4 {
-            for b in 0..4 {
-                for ax in 0..3 {
-                    if let Some(j) = dof[3 * tet[b] + ax] {
-                        gp.push((tet[a], j));
-                        gv.push(0.25 * gv_e[b][ax]);
-                        if let Some(i) = dof[3 * tet[a] + ax] {
-                            kp.push((i, j));
-                            kv.push(vol * grads[a].dot(&grads[b]));
-                        }
-                    }
-                }
-            }
-        }
-    }
-    let k = SparsityPattern::new(n, n, &kp, Triangle::Full)
+/// `K` of [`P1Box`] assembled.
+fn p1_box_k(p: &P1Box) -> SparseColMat<usize, f64> {
+    SparsityPattern::new(p.n, p.n, &p.k_pairs, Triangle::Full)
         .unwrap()
-        .assemble(&kv)
-        .unwrap();
-    let g = SparsityPattern::new(nv, n, &gp, Triangle::Full)
+        .assemble(&p.k_values)
         .unwrap()
-        .assemble(&gv)
-        .unwrap();
-    let anchors = (0..nv).map(|v| dof[3 * v + 2]).collect();
-    P1Box { k, g, anchors }
 }
 
 /// The C = 0 P1-P1 KKT is singular (spurious pressure modes) but the displacement is
 /// unique: a consistent right-hand side `A (u*, p*)` must give back `u*` exactly.
 #[test]
 fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() {
-    let P1Box { k, g, anchors } = p1_box([12, 4, 4]);
+    let p = p1_box([12, 4, 4]);
+    let (k, g, anchors) = (p1_box_k(&p), p.g, p.anchors);
     let (n, m) = (k.nrows(), g.nrows());
     let mut rng = Rng(13);
     let truth: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
@@ -535,7 +476,8 @@ fn krylov_failures_are_error_values() {
 /// at `C = 0`: the solver says so with an error value instead of returning a huge step.
 #[test]
 fn p1_box_kkt_with_inconsistent_rhs_is_an_error_value() {
-    let P1Box { k, g, anchors } = p1_box([6, 3, 3]);
+    let p = p1_box([6, 3, 3]);
+    let (k, g, anchors) = (p1_box_k(&p), p.g, p.anchors);
     let (n, m) = (k.nrows(), g.nrows());
     let mut rng = Rng(17);
     let b: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();

@@ -66,6 +66,26 @@ fn check_dims(a: &dyn LinearOperator, m: &Jacobi, b: &[f64], x: &[f64]) -> Resul
     Ok(())
 }
 
+/// Checks the inputs; for `b = 0` sets `x = 0` and returns the finished report.
+fn prologue(
+    a: &dyn LinearOperator,
+    m: &Jacobi,
+    b: &[f64],
+    x: &mut [f64],
+    start: Instant,
+) -> Result<Option<IterativeReport>, LinearError> {
+    check_dims(a, m, b, x)?;
+    if norm(b) > 0.0 {
+        return Ok(None);
+    }
+    x.fill(0.0);
+    Ok(Some(IterativeReport {
+        iterations: 0,
+        residual: 0.0,
+        time: start.elapsed(),
+    }))
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -82,19 +102,11 @@ pub fn cg(
 ) -> Result<IterativeReport, LinearError> {
     const METHOD: &str = "CG";
     let start = Instant::now();
-    check_dims(a, m, b, x)?;
+    if let Some(done) = prologue(a, m, b, x, start)? {
+        return Ok(done);
+    }
     let n = b.len();
-    let b_norm = match norm(b) {
-        0.0 => {
-            x.fill(0.0);
-            return Ok(IterativeReport {
-                iterations: 0,
-                residual: 0.0,
-                time: start.elapsed(),
-            });
-        }
-        v => v,
-    };
+    let b_norm = norm(b);
     let mut r = vec![0.0; n];
     a.apply(x, &mut r);
     r.iter_mut().zip(b).for_each(|(ri, bi)| *ri = bi - *ri);
@@ -158,16 +170,10 @@ pub fn minres(
 ) -> Result<IterativeReport, LinearError> {
     const METHOD: &str = "MINRES";
     let start = Instant::now();
-    check_dims(a, m, b, x)?;
-    let n = b.len();
-    if norm(b) == 0.0 {
-        x.fill(0.0);
-        return Ok(IterativeReport {
-            iterations: 0,
-            residual: 0.0,
-            time: start.elapsed(),
-        });
+    if let Some(done) = prologue(a, m, b, x, start)? {
+        return Ok(done);
     }
+    let n = b.len();
     let mut r1 = vec![0.0; n];
     a.apply(x, &mut r1);
     r1.iter_mut().zip(b).for_each(|(ri, bi)| *ri = bi - *ri);
