@@ -107,6 +107,8 @@ pub struct Simulation {
     model: Model,
     settings: Settings,
     state: State,
+    /// The external loads' potential at rest, the zero of [`Energies::external`].
+    rest_external: f64,
 }
 
 /// The nonlinear solver of a run.
@@ -141,10 +143,18 @@ impl Simulation {
             ],
             t: 0.0,
         };
+        let rest = model.mesh.positions();
+        let rest_external = model
+            .terms
+            .iter()
+            .filter(|t| t.is_external())
+            .map(|t| t.evaluate(rest, 1.0, None, None))
+            .sum::<Result<f64, _>>()?;
         Ok(Simulation {
             model,
             settings,
             state,
+            rest_external,
         })
     }
 
@@ -233,19 +243,18 @@ impl Simulation {
                     .sum::<f64>(),
             ..Energies::default()
         };
-        let rest = self.model.mesh.positions();
         for term in &self.model.terms {
             let e = term
                 .evaluate(&state.positions, 1.0, None, None)
                 .unwrap_or(f64::NAN);
             if term.is_external() {
-                // Relative to rest: minus the work of the loads on the displacements.
-                let e0 = term.evaluate(rest, 1.0, None, None).unwrap_or(f64::NAN);
-                energies.external += e - e0;
+                energies.external += e;
             } else {
                 energies.elastic += e;
             }
         }
+        // Relative to rest: minus the work of the loads on the displacements.
+        energies.external -= self.rest_external;
         energies
     }
 
