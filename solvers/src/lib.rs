@@ -29,5 +29,8 @@ pub use problem::{
 };
 pub use report::{IterationReport, StepReport, Timings};
 pub use settings::{LinearSolver, Settings};
-pub use simulation::{Energies, Frame, RunSummary, Simulation, SimulationFailure, State, Stepping};
+pub use simulation::{
+    Energies, Frame, Linearizer, NewtonSystem, RunSummary, Simulation, SimulationFailure, State,
+    Stepping,
+};
 pub use terms::ContactSummary;

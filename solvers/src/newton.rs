@@ -7,9 +7,10 @@ use crate::linear::{
     cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower,
 };
 use crate::step::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::system::System;
+use crate::system::{Evaluation, System};
 use crate::LinearSolver;
 use crate::{IterationReport, SolverError, StepReport};
+use faer::sparse::SparseColMat;
 use isochor_mesh::Vec3;
 use std::time::Instant;
 
@@ -115,9 +116,13 @@ impl Newton {
         let settings = system.settings;
         let dofs = &system.model.dofs;
         for _ in 0..iterations {
-            let d_fixed = gap(x, &target.prescribed, 3 * x.len());
-            let eval = system.assemble(x, target.load, None)?;
-            let residual = dofs.gather(&eval.gradient);
+            let Linearized {
+                eval,
+                d_fixed,
+                residual,
+                mut rhs,
+                k,
+            } = linearize(system, x, target)?;
             let force = norm(&residual);
             report.force_residual = force;
             if !force.is_finite() {
@@ -127,11 +132,6 @@ impl Newton {
                 report.converged = true;
                 return Ok(true);
             }
-            let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
-            system
-                .hessian
-                .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs);
-            let k = system.hessian.matrix(&system.hessian_values)?;
             report.timings.assembly += system.take_assembly_time();
 
             let shift = self.solve_linear(settings.linear, k.as_ref(), &mut rhs, report)?;
@@ -193,4 +193,41 @@ impl Newton {
         }
         Ok(false)
     }
+}
+
+/// The Newton system at `x`: `K dx = rhs` over the free DOFs.
+pub struct Linearized {
+    /// Energy and full-space gradient.
+    pub eval: Evaluation,
+    /// Prescribed increments `target - x` (full space, zero on free DOFs).
+    pub d_fixed: Vec<f64>,
+    /// The force residual: the gradient on the free DOFs.
+    pub residual: Vec<f64>,
+    /// `-residual - K_fc d_fixed`: the prescribed increments moved to the right-hand side.
+    pub rhs: Vec<f64>,
+    /// The free-free Hessian `K_ff` (lower triangle).
+    pub k: SparseColMat<usize, f64>,
+}
+
+/// Assembles the Newton system of `system` at `x` for `target`.
+pub fn linearize(
+    system: &mut System<'_>,
+    x: &[Vec3],
+    target: &StepTarget,
+) -> Result<Linearized, SolverError> {
+    let d_fixed = gap(x, &target.prescribed, 3 * x.len());
+    let eval = system.assemble(x, target.load, None)?;
+    let residual = system.model.dofs.gather(&eval.gradient);
+    let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
+    system
+        .hessian
+        .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs);
+    let k = system.hessian.matrix(&system.hessian_values)?;
+    Ok(Linearized {
+        eval,
+        d_fixed,
+        residual,
+        rhs,
+        k,
+    })
 }

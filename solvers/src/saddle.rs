@@ -59,6 +59,24 @@ struct Schur {
     schur: DMatrix<f64>,
 }
 
+/// The KKT system of one saddle-point Newton step (see [`SaddleNewton::linearize`]).
+pub struct Linearized {
+    /// Prescribed increments `target - x` (full space, zero on free DOFs).
+    pub d_fixed: Vec<f64>,
+    /// Force residual `grad E + G^T p` on the free DOFs.
+    pub sigma_f: Vec<f64>,
+    /// Constraint residual `phi - C p`.
+    pub theta: Vec<f64>,
+    /// `-sigma_f - K_fc d_fixed`.
+    pub rhs_x: Vec<f64>,
+    /// `-theta - G_c d_fixed`.
+    pub rhs_p: Vec<f64>,
+    /// `K_ff` (with the geometric stiffness of the constraints), lower triangle.
+    pub k: SparseColMat<usize, f64>,
+    /// `G_f`, the constraint Jacobian on the free DOFs.
+    pub g: SparseColMat<usize, f64>,
+}
+
 /// Saddle-point Newton with its factorizations, kept across steps.
 #[derive(Debug)]
 pub struct SaddleNewton {
@@ -193,6 +211,55 @@ impl SaddleNewton {
         Ok((sigma, self.theta(&phi, p)))
     }
 
+    /// The KKT system of the Newton step at `(x, p)` for `target` (eq. 24, or eq. 21 when
+    /// the system carries inertia): residuals, right-hand sides with the prescribed
+    /// increments moved over (`K_fc`, `G_c`), and the free blocks `K` and `G`; the matrix
+    /// is `[[K, G^T], [G, -C]]` with `C` = [`SaddleNewton::compliance`].
+    pub fn linearize(
+        &self,
+        system: &mut System<'_>,
+        x: &[Vec3],
+        p: &[f64],
+        target: &StepTarget,
+    ) -> Result<Linearized, SolverError> {
+        let missing =
+            || SolverError::InvalidProblem("saddle-point Newton without constraints".into());
+        let constraints = system.model.constraints.clone().ok_or_else(missing)?;
+        let d_fixed = gap(x, &target.prescribed, 3 * x.len());
+        let eval = system.assemble(x, target.load, Some(p))?;
+        let jacobian = system.jacobian.as_ref().ok_or_else(missing)?;
+        let mut sigma = eval.gradient;
+        for (&(row, dof), v) in self.jacobian_pattern.iter().zip(&system.jacobian_values) {
+            sigma[dof] += v * p[row];
+        }
+        let mut phi = vec![0.0; p.len()];
+        constraints.values(x, &mut phi)?;
+        let theta = self.theta(&phi, p);
+        let sigma_f = system.model.dofs.gather(&sigma);
+        let mut rhs_x: Vec<f64> = sigma_f.iter().map(|s| -s).collect();
+        system
+            .hessian
+            .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
+        let mut rhs_p: Vec<f64> = theta.iter().map(|t| -t).collect();
+        jacobian.add_coupling(&system.jacobian_values, &d_fixed, -1.0, &mut rhs_p);
+        let k = system.hessian.matrix(&system.hessian_values)?;
+        let g = jacobian.matrix(&system.jacobian_values)?;
+        Ok(Linearized {
+            d_fixed,
+            sigma_f,
+            theta,
+            rhs_x,
+            rhs_p,
+            k,
+            g,
+        })
+    }
+
+    /// The compliance block `C` of the KKT matrix (`None` if identically zero).
+    pub fn compliance(&self) -> Option<&SparseColMat<usize, f64>> {
+        self.compliance.as_ref()
+    }
+
     /// Solves one step of the constrained problem from `(x, p)`. Appends every iteration
     /// to `report`; on error `(x, p)` hold the last accepted iterate.
     pub fn solve(
@@ -205,7 +272,6 @@ impl SaddleNewton {
     ) -> Result<(), SolverError> {
         let settings = system.settings;
         let volumes = system.model.row_volumes.clone();
-        let constraints = system.model.constraints.clone().expect("checked in new");
         let scaled = |theta: &[f64]| -> Vec<f64> {
             theta.iter().zip(&volumes).map(|(t, v)| t / v).collect()
         };
@@ -217,18 +283,15 @@ impl SaddleNewton {
         let n_dofs = 3 * x.len();
         let mut nonmonotone_budget = WATCHDOG_STEPS;
         for _ in 0..settings.max_iterations {
-            let d_fixed = gap(x, &target.prescribed, n_dofs);
-            let eval = system.assemble(x, target.load, Some(p))?;
-            let jacobian = system.jacobian.as_ref().expect("constrained system");
-            let mut sigma = eval.gradient;
-            let pattern = &self.jacobian_pattern;
-            for (&(row, dof), v) in pattern.iter().zip(&system.jacobian_values) {
-                sigma[dof] += v * p[row];
-            }
-            let mut phi = vec![0.0; p.len()];
-            constraints.values(x, &mut phi)?;
-            let theta = self.theta(&phi, p);
-            let sigma_f = system.model.dofs.gather(&sigma);
+            let Linearized {
+                d_fixed,
+                sigma_f,
+                theta,
+                rhs_x,
+                rhs_p,
+                k,
+                g,
+            } = self.linearize(system, x, p, target)?;
             let force = norm(&sigma_f);
             let constraint = max_abs(&scaled(&theta));
             report.force_residual = force;
@@ -244,15 +307,6 @@ impl SaddleNewton {
                 report.converged = true;
                 return Ok(());
             }
-            // Right-hand side, with the prescribed increments moved over (K_fc, G_c).
-            let mut rhs_x: Vec<f64> = sigma_f.iter().map(|s| -s).collect();
-            system
-                .hessian
-                .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
-            let mut rhs_p: Vec<f64> = theta.iter().map(|t| -t).collect();
-            jacobian.add_coupling(&system.jacobian_values, &d_fixed, -1.0, &mut rhs_p);
-            let k = system.hessian.matrix(&system.hessian_values)?;
-            let g = jacobian.matrix(&system.jacobian_values)?;
             report.timings.assembly += system.take_assembly_time();
 
             let shift = self.factorize(k, g, report)?;

@@ -2,14 +2,16 @@
 
 use crate::dual;
 use crate::model::{Model, Strategy};
-use crate::newton::Newton;
+use crate::newton::{self, Newton};
 use crate::saddle::SaddleNewton;
 use crate::step::{norm, StepTarget};
 use crate::system::System;
 use crate::terms::Inertia;
 use crate::{Method, Problem, Settings, SolverError, StepReport};
+use faer::sparse::SparseColMat;
 use isochor_energies::{tet, Hyperelastic};
 use isochor_mesh::{TetMesh, Vec3};
+use nalgebra::DMatrix;
 use std::time::{Duration, Instant};
 
 /// How time or load advances.
@@ -109,6 +111,129 @@ pub struct Simulation {
     state: State,
     /// The external loads' potential at rest, the zero of [`Energies::external`].
     rest_external: f64,
+}
+
+type Sparse = SparseColMat<usize, f64>;
+
+/// The linear system of one Newton iteration over the free DOFs and the multipliers (see
+/// [`Linearizer::newton_system`]), dense: meant for tests and small meshes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewtonSystem {
+    /// The free DOFs (indices `3 v + axis` into the positions), in row order.
+    pub free: Vec<usize>,
+    /// The residual: the force residual on the free DOFs, then the constraint residual
+    /// `phi - C p` (saddle-point methods only).
+    pub residual: Vec<f64>,
+    /// The right-hand side solved for: `-residual` minus the coupling to the prescribed
+    /// DOFs (`K_fc` and `G_c`) applied to `gap`.
+    pub rhs: Vec<f64>,
+    /// The prescribed increments `target - x` (full space, zero on free DOFs).
+    pub gap: Vec<f64>,
+    /// The symmetric matrix: `K` over the free DOFs, or `[[K, G^T], [G, -C]]`.
+    pub matrix: DMatrix<f64>,
+}
+
+impl NewtonSystem {
+    /// Densifies `K` (lower triangle) and, for a KKT system, `G` and `C`.
+    fn new(
+        model: &Model,
+        residual: Vec<f64>,
+        rhs: Vec<f64>,
+        gap: Vec<f64>,
+        k: &Sparse,
+        kkt: Option<(&Sparse, Option<&Sparse>)>,
+    ) -> Self {
+        let n = k.ncols();
+        let mut matrix = DMatrix::zeros(residual.len(), residual.len());
+        let entries = |a: &Sparse| {
+            let a = a.as_ref();
+            (0..a.ncols())
+                .flat_map(move |c| {
+                    a.row_idx_of_col(c)
+                        .zip(a.val_of_col(c))
+                        .map(move |(r, v)| (r, c, *v))
+                })
+                .collect::<Vec<_>>()
+        };
+        for (r, c, v) in entries(k) {
+            matrix[(r, c)] += v;
+            if r != c {
+                matrix[(c, r)] += v;
+            }
+        }
+        if let Some((g, compliance)) = kkt {
+            for (r, c, v) in entries(g) {
+                matrix[(n + r, c)] += v;
+                matrix[(c, n + r)] += v;
+            }
+            for (r, c, v) in compliance.map(entries).unwrap_or_default() {
+                matrix[(n + r, n + c)] -= v;
+            }
+        }
+        NewtonSystem {
+            free: model.dofs.free().to_vec(),
+            residual,
+            rhs,
+            gap,
+            matrix,
+        }
+    }
+}
+
+/// The linear systems of one step (see [`Simulation::linearizer`]).
+pub struct Linearizer<'s> {
+    system: System<'s>,
+    saddle: Option<SaddleNewton>,
+    target: StepTarget,
+    multipliers: usize,
+}
+
+impl Linearizer<'_> {
+    /// The linear system the method's nonlinear solver builds at `trial`, after Dirichlet
+    /// elimination. Quasi-static: `[[K, G^T], [G, -C]]` of eq. 24 of Francu et al. 2021;
+    /// implicit Euler: with `M / dt^2` added to `K` (eq. 21). `K` includes the constraints'
+    /// geometric stiffness (eq. 23). `standard` and `condensed` have `K` alone, and `dual`
+    /// the Hessian of its primal problem (eq. 39) at the multipliers of `trial`.
+    pub fn newton_system(&mut self, trial: &State) -> Result<NewtonSystem, SolverError> {
+        let model = self.system.model;
+        if trial.positions.len() != model.mesh.num_vertices()
+            || trial.multipliers.len() != self.multipliers
+        {
+            return Err(SolverError::InvalidProblem(format!(
+                "a trial state needs {} positions and {} multipliers",
+                model.mesh.num_vertices(),
+                self.multipliers
+            )));
+        }
+        let x = &trial.positions;
+        match &self.saddle {
+            None => {
+                if let (Some(augmented), false) = (&model.augmented, trial.multipliers.is_empty()) {
+                    augmented.set_multipliers(&trial.multipliers);
+                }
+                let l = newton::linearize(&mut self.system, x, &self.target)?;
+                Ok(NewtonSystem::new(
+                    model, l.residual, l.rhs, l.d_fixed, &l.k, None,
+                ))
+            }
+            Some(saddle) => {
+                let l = saddle.linearize(&mut self.system, x, &trial.multipliers, &self.target)?;
+                let mut residual = l.sigma_f;
+                residual.extend(l.theta);
+                let mut rhs = l.rhs_x;
+                rhs.extend(l.rhs_p);
+                let kkt = (&l.g, saddle.compliance());
+                Ok(NewtonSystem::new(
+                    model,
+                    residual,
+                    rhs,
+                    l.d_fixed,
+                    &l.k,
+                    Some(kkt),
+                ))
+            }
+        }
+    }
 }
 
 /// The nonlinear solver of a run.
@@ -258,6 +383,45 @@ impl Simulation {
         energies
     }
 
+    /// The linearization of step `step` (from 1) of `stepping` from the current state (the
+    /// previous step): [`Linearizer::newton_system`] gives the linear system the method's
+    /// nonlinear solver builds at any trial state, for tests against finite differences of
+    /// its residual. Obstacles, if any, are moved to the step's position (as [`Self::run`]
+    /// does at each step) and keep their multipliers.
+    pub fn linearizer(
+        &mut self,
+        stepping: Stepping,
+        step: usize,
+    ) -> Result<Linearizer<'_>, SolverError> {
+        check_stepping(stepping)?;
+        let (steps, dt) = match stepping {
+            Stepping::QuasiStatic { steps } => (steps, None),
+            Stepping::ImplicitEuler { dt, frames } => (frames, Some(dt)),
+        };
+        let force_tolerance = self.settings.force_tolerance * self.force_scale()?;
+        self.model.set_contact_stiffness(dt);
+        let inertia = dt.map(|dt| {
+            let mut inertia = Inertia::new(self.model.masses.clone(), dt);
+            inertia.begin_step(&self.state.positions, &self.state.velocities);
+            inertia
+        });
+        let system = System::new(&self.model, inertia, self.settings)?;
+        let saddle = match self.model.strategy {
+            Strategy::Minimize | Strategy::Dual => None,
+            Strategy::SaddleDirect | Strategy::SaddleSchur => Some(SaddleNewton::new(&system)?),
+        };
+        let (fraction, _, target) = step_target(&self.model, steps, dt, step, force_tolerance);
+        if let Some(contact) = &self.model.contact {
+            contact.set_time(fraction);
+        }
+        Ok(Linearizer {
+            system,
+            saddle,
+            target,
+            multipliers: self.state.multipliers.len(),
+        })
+    }
+
     /// Runs `stepping` from the current state, calling `observer` after every accepted step.
     /// On failure the state is left at the last accepted step, which the error carries too.
     pub fn run(
@@ -286,22 +450,10 @@ impl Simulation {
             Ok(scale) => self.settings.force_tolerance * scale,
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
         };
-        let inertia = dt.map(|dt| Inertia::new(self.model.masses.clone(), dt));
         self.model.set_contact_stiffness(dt);
         let (lo, hi) = self.model.mesh.bounding_box();
         let contact_tolerance = self.settings.contact_tolerance * (hi - lo).norm();
-        let setup = (|| {
-            let system = System::new(&self.model, inertia, self.settings)?;
-            let solver = match self.model.strategy {
-                Strategy::Minimize => Solver::Newton(Newton::new(&system)?),
-                Strategy::Dual => Solver::Dual(Newton::new(&system)?),
-                Strategy::SaddleDirect | Strategy::SaddleSchur => {
-                    Solver::Saddle(SaddleNewton::new(&system)?)
-                }
-            };
-            Ok::<_, SolverError>((system, solver))
-        })();
-        let (mut system, mut solver) = match setup {
+        let (mut system, mut solver) = match setup(&self.model, self.settings, dt) {
             Ok(s) => s,
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
         };
@@ -315,11 +467,7 @@ impl Simulation {
         let mut max_inverted = self.model.mesh.count_inverted(&self.state.positions);
         for step in 1..=steps {
             let step_start = Instant::now();
-            let fraction = step as f64 / steps as f64;
-            let (load, t) = match dt {
-                None => (fraction, fraction),
-                Some(dt) => (1.0, step as f64 * dt),
-            };
+            let (fraction, t, target) = step_target(&self.model, steps, dt, step, force_tolerance);
             if let Some(inertia) = &mut system.inertia {
                 inertia.begin_step(&self.state.positions, &self.state.velocities);
             }
@@ -327,15 +475,6 @@ impl Simulation {
             if let Some(contact) = &system.model.contact {
                 contact.set_time(fraction);
             }
-            let target = StepTarget {
-                load,
-                prescribed: self
-                    .model
-                    .dofs
-                    .targets(self.model.mesh.positions(), fraction)
-                    .collect(),
-                force_tolerance,
-            };
             let mut x = self.state.positions.clone();
             let mut p = self.state.multipliers.clone();
             let mut report = StepReport {
@@ -426,6 +565,51 @@ impl Simulation {
             wall_time: start.elapsed(),
         })
     }
+}
+
+/// The assembled system of a run with time step `dt` (inertia in implicit Euler, none in
+/// quasi-static stepping) and the nonlinear solver of the model's strategy.
+fn setup(
+    model: &Model,
+    settings: Settings,
+    dt: Option<f64>,
+) -> Result<(System<'_>, Solver), SolverError> {
+    let inertia = dt.map(|dt| Inertia::new(model.masses.clone(), dt));
+    let system = System::new(model, inertia, settings)?;
+    let solver = match model.strategy {
+        Strategy::Minimize => Solver::Newton(Newton::new(&system)?),
+        Strategy::Dual => Solver::Dual(Newton::new(&system)?),
+        Strategy::SaddleDirect | Strategy::SaddleSchur => {
+            Solver::Saddle(SaddleNewton::new(&system)?)
+        }
+    };
+    Ok((system, solver))
+}
+
+/// Step `step` (from 1) of `steps`: its fraction of the run (the parameter of prescribed
+/// motions and obstacles), its load parameter or time `t`, and the target of its solve
+/// (loads ramped in quasi-static stepping, constant in dynamics).
+fn step_target(
+    model: &Model,
+    steps: usize,
+    dt: Option<f64>,
+    step: usize,
+    force_tolerance: f64,
+) -> (f64, f64, StepTarget) {
+    let fraction = step as f64 / steps as f64;
+    let (load, t) = match dt {
+        None => (fraction, fraction),
+        Some(dt) => (1.0, step as f64 * dt),
+    };
+    let target = StepTarget {
+        load,
+        prescribed: model
+            .dofs
+            .targets(model.mesh.positions(), fraction)
+            .collect(),
+        force_tolerance,
+    };
+    (fraction, t, target)
 }
 
 /// Mean Cauchy stress `tr(P F^T) / (3 J)` of tet `e` (NaN where the energy is undefined).
