@@ -7,6 +7,7 @@ use crate::scene::{
 };
 use crate::selection::Selections;
 use crate::SceneError;
+use isochor_energies::ParameterError;
 use isochor_mesh::{generate, TetMesh, Vec3, Zones};
 use isochor_solvers::{
     Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Obstacle, Problem,
@@ -215,7 +216,18 @@ pub fn read_mesh_file(path: &Path) -> Result<TetMesh, SceneError> {
 pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
     let young = match (spec.young, spec.mu) {
         (Some(e), _) => e,
-        (None, Some(mu)) => 2.0 * mu * (1.0 + spec.nu),
+        (None, Some(mu)) => {
+            // Checked as given, not as the Young's modulus it implies, so the error names mu.
+            if !(mu.is_finite() && mu > 0.0) {
+                return Err(ParameterError {
+                    name: "mu",
+                    value: mu,
+                    reason: "shear modulus must be finite and positive",
+                }
+                .into());
+            }
+            2.0 * mu * (1.0 + spec.nu)
+        }
         (None, None) => {
             return Err(SceneError::Invalid {
                 origin: "scene".into(),

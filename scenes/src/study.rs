@@ -252,15 +252,7 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
             error: None,
         });
     }
-    let mut study = Study {
-        scene: base.name.clone(),
-        sweep_key: key,
-        probe,
-        runs,
-        extrapolations: Vec::new(),
-        reference: None,
-    };
-    study.extrapolate(request.reference)?;
+    let study = Study::from_runs(base.name.clone(), key, probe, runs, request.reference)?;
     let written = match out {
         Some(dir) => {
             write_file(&dir.path().join("study.csv"), study.to_csv().as_bytes())?;
@@ -274,6 +266,28 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
 }
 
 impl Study {
+    /// The study of finished runs (method-major, coarse to fine): extrapolates every method
+    /// with three converged runs, takes `wanted`'s extrapolation (or the best-converging one)
+    /// as the reference and measures every run's error against it.
+    pub fn from_runs(
+        scene: String,
+        sweep_key: String,
+        probe: String,
+        runs: Vec<StudyRun>,
+        wanted: Option<Method>,
+    ) -> Result<Study, SceneError> {
+        let mut study = Study {
+            scene,
+            sweep_key,
+            probe,
+            runs,
+            extrapolations: Vec::new(),
+            reference: None,
+        };
+        study.extrapolate(wanted)?;
+        Ok(study)
+    }
+
     /// Converged (resolution, value) pairs of one method, coarse to fine.
     fn series(&self, method: &str) -> Vec<(f64, f64)> {
         self.runs

@@ -241,7 +241,15 @@ impl Material {
             }
         }
         if let Some(skin) = self.epidermis {
-            Lame::from_young_poisson(skin.young, skin.poisson)?;
+            // Named as the epidermis' own parameters, not the body's E and nu.
+            Lame::from_young_poisson(skin.young, skin.poisson).map_err(|e| ParameterError {
+                name: match e.name {
+                    "E" => "epidermis_young",
+                    "nu" => "epidermis_nu",
+                    other => other,
+                },
+                ..e
+            })?;
             if !(skin.gamma.is_finite() && skin.gamma >= 0.0) {
                 return bad(
                     "epidermis_gamma",

@@ -6,7 +6,7 @@ mod common;
 
 use common::plane;
 use isochor_mesh::generate::{ball, box_grid};
-use isochor_mesh::{TetMesh, Vec3};
+use isochor_mesh::{BoundarySurface, TetMesh, Vec3};
 use isochor_solvers::{
     Dirichlet, Load, Material, Method, Motion, Obstacle, Problem, Settings, Shape, Simulation,
     Stepping,
@@ -26,6 +26,60 @@ fn ground(z0: f64) -> Obstacle {
 fn tolerance(mesh: &TetMesh) -> f64 {
     let (lo, hi) = mesh.bounding_box();
     Settings::default().contact_tolerance * (hi - lo).norm()
+}
+
+/// Checks complementarity pair by pair, `(vertex, obstacle, lambda, d)`, and returns the
+/// pairs in contact: every multiplier `lambda >= 0`, every gap `d >= -tol`, and
+/// `|lambda d| <= lambda tol` (a positive multiplier only where the gap is within `tol`). The
+/// bound is the stopping rule's: the last update moved no multiplier by more than `rho tol`,
+/// so a positive `lambda = lambda_old - rho d` has `|d| <= tol` and a zero one has
+/// `d >= lambda_old / rho >= 0`.
+fn assert_complementarity(
+    pairs: impl Iterator<Item = (usize, usize, f64, f64)>,
+    tol: f64,
+    what: &str,
+) -> usize {
+    let (mut active, mut widest) = (0, 0.0f64);
+    for (v, k, l, d) in pairs {
+        assert!(
+            l >= 0.0 && d >= -tol && (l * d).abs() <= l * tol,
+            "{what}: vertex {v}, obstacle {k}: lambda {l:e} at gap {d:e} (tolerance {tol:e})"
+        );
+        if l > 0.0 {
+            active += 1;
+            widest = widest.max(d.abs());
+        }
+    }
+    eprintln!("{what}: {active} pairs in contact, largest |d| among them {widest:.1e} m (tolerance {tol:.1e} m)");
+    active
+}
+
+/// The `(vertex, obstacle, lambda, d)` pairs of a finished quasi-static run: the multipliers
+/// (boundary-vertex-major over the obstacles) and the gaps at the final state `x`, with the
+/// obstacles at the end of their motion.
+fn final_pairs(
+    sim: &Simulation,
+    obstacles: &[Obstacle],
+    x: &[Vec3],
+) -> Vec<(usize, usize, f64, f64)> {
+    let candidates = BoundarySurface::new(sim.mesh())
+        .unwrap()
+        .vertices()
+        .to_vec();
+    let lambda = sim.contact_multipliers();
+    assert_eq!(lambda.len(), candidates.len() * obstacles.len());
+    let m = obstacles.len();
+    candidates
+        .iter()
+        .enumerate()
+        .flat_map(|(a, &v)| {
+            obstacles
+                .iter()
+                .enumerate()
+                .map(move |(k, o)| (v, k, a * m + k, o.distance(&x[v], 1.0).0))
+        })
+        .map(|(v, k, i, d)| (v, k, lambda[i], d))
+        .collect()
 }
 
 fn volume(mesh: &TetMesh, x: &[Vec3]) -> f64 {
@@ -58,6 +112,10 @@ fn resting_block_at(method: Method, nu: f64, z0: f64) -> Problem {
     }
 }
 
+/// A block on the ground carries its weight through the contact forces, with every method
+/// (and zero compliance), without penetrating, and with complementarity at every boundary
+/// vertex: the 16 bottom vertices carry positive multipliers at zero gap (to the contact
+/// tolerance), every other vertex none.
 #[test]
 fn resting_block_carries_its_weight_without_penetrating() {
     // Every method, and zero-compliance volume constraints (nu = 0.5) too. (Not mixed-p0 at
@@ -68,6 +126,7 @@ fn resting_block_carries_its_weight_without_penetrating() {
         .chain([(Method::MixedP1, 0.5), (Method::MixedP1Log, 0.5)]);
     for (method, nu) in cases {
         let problem = resting_block(method, nu);
+        let obstacles = problem.obstacles.clone();
         let weight = G * 1000.0 * problem.mesh.rest_volume();
         let tol = tolerance(&problem.mesh);
         let mut sim = Simulation::new(problem, Settings::default()).unwrap();
@@ -88,7 +147,13 @@ fn resting_block_carries_its_weight_without_penetrating() {
             last.contact.active_vertices, 16,
             "{method}: the bottom face"
         );
-        assert!(sim.contact_multipliers().iter().all(|&l| l >= 0.0));
+        let x = &summary.final_state.positions;
+        let pairs = assert_complementarity(
+            final_pairs(&sim, &obstacles, x).into_iter(),
+            tol,
+            &format!("{method} at nu = {nu}"),
+        );
+        assert_eq!(pairs, 16, "{method}: the bottom face");
         let lowest = summary
             .final_state
             .positions
@@ -127,6 +192,59 @@ fn resting_block_does_not_depend_on_the_origin() {
             .fold(0.0, f64::max);
         assert!(gap < 1e-9, "{method}: states differ by {gap:e} m");
     }
+}
+
+/// A 0.1 m cube hanging from its top face under gravity (ramped with the load), its bottom
+/// on a ground that starts at the rest height and recedes by 4 mm over 4 steps. At the first
+/// step the ground carries part of the weight (the free sag, about `rho g L^2 / (2 E)` = 0.1
+/// mm at a quarter of the load, exceeds the ground's 0 mm drop); from the second on the gap
+/// is open (the ground 1 mm down against a sag near 0.25 mm). At every step complementarity
+/// holds at every boundary vertex: in contact at the first, every multiplier released after.
+#[test]
+fn receding_ground_releases_every_contact() {
+    let mesh = box_grid(Vec3::zeros(), Vec3::repeat(0.1), [3, 3, 3]).unwrap();
+    let tol = tolerance(&mesh);
+    let boundary = BoundarySurface::new(&mesh).unwrap().vertices().to_vec();
+    let ground = Obstacle {
+        shape: Shape::HalfSpace {
+            point: Vec3::new(0.0, 0.0, 1e-3),
+            normal: Vec3::z(),
+        },
+        translate: Vec3::new(0.0, 0.0, -4e-3),
+    };
+    let top = plane(&mesh, 2, 0.1);
+    let problem = Problem {
+        mesh,
+        method: Method::Standard,
+        material: Material::from_young_poisson(100e3, 0.45, 1000.0).unwrap(),
+        zones: None,
+        dirichlet: vec![Dirichlet {
+            vertices: top,
+            axes: [true; 3],
+            motion: Motion::Fixed,
+        }],
+        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G))],
+        obstacles: vec![ground],
+    };
+    let steps = 4;
+    let mut sim = Simulation::new(problem, Settings::default()).unwrap();
+    let mut active = Vec::new();
+    sim.run(Stepping::QuasiStatic { steps }, |frame| {
+        // One obstacle with normal +z: each vertex's contact force is (0, 0, lambda).
+        let t = frame.index as f64 / steps as f64;
+        let x = &frame.state.positions;
+        let pairs = boundary
+            .iter()
+            .map(|&v| (v, 0, frame.contact_forces[v].z, ground.distance(&x[v], t).0));
+        active.push(assert_complementarity(
+            pairs,
+            tol,
+            &format!("step {}", frame.index),
+        ));
+    })
+    .unwrap();
+    assert!(active[0] > 0, "{active:?}");
+    assert!(active[1..].iter().all(|&a| a == 0), "{active:?}");
 }
 
 /// A ball of radius 0.1 m (`48 res^3` tets) with shear modulus `mu`, `gap` above the ground.
@@ -216,6 +334,9 @@ fn zonal_keeps_the_volume_through_the_impact() {
     assert!(worst <= 1e-8, "volume drift {worst:e}");
 }
 
+/// An incompressible block squeezed by two moving cylinders: no penetration, complementarity
+/// at every boundary vertex and both cylinders, vertical forces that cancel, and the thickness
+/// under the cylinders' lines that their motion prescribes.
 #[test]
 fn incompressible_block_squeezed_between_moving_cylinders() {
     // Two cylinders along y press the bottom and top of a cube at nu = 0.5 (C = 0) by 10 mm
@@ -236,6 +357,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         },
         translate: Vec3::new(0.0, 0.0, dz),
     };
+    let obstacles = vec![cylinder(-0.05, 0.01), cylinder(0.15, -0.01)];
     let problem = Problem {
         mesh,
         method: Method::MixedP1,
@@ -243,7 +365,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         zones: None,
         dirichlet,
         loads: Vec::new(),
-        obstacles: vec![cylinder(-0.05, 0.01), cylinder(0.15, -0.01)],
+        obstacles: obstacles.clone(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let summary = sim.run(Stepping::QuasiStatic { steps: 2 }, |_| {}).unwrap();
@@ -251,9 +373,14 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
     let x = &summary.final_state.positions;
     assert!(last.contact.max_penetration <= tol);
     assert!(last.contact.active_vertices >= 2);
+    let pairs = assert_complementarity(
+        final_pairs(&sim, &obstacles, x).into_iter(),
+        tol,
+        "squeezed block",
+    );
+    assert!(pairs >= 2, "{pairs} pairs in contact");
     let squeeze: f64 = sim.contact_multipliers().iter().sum();
     assert!(squeeze > 0.0);
-    assert!(sim.contact_multipliers().iter().all(|&l| l >= 0.0));
     // The holds react in x and y only: the cylinders' vertical forces cancel.
     assert!(
         last.contact.force.z.abs() <= 1e-6 * squeeze,

@@ -7,8 +7,8 @@ use common::{p1_box, P1Box};
 use faer::sparse::SparseColMat;
 use isochor_solvers::linear::{
     cg, diagonal, minres, relative_residual, saddle_point_diagonal, CholeskySolver,
-    IterativeOptions, Jacobi, KktOptions, KktSolver, LinearError, LinearOperator, SaddlePoint,
-    ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
+    IterativeOptions, Jacobi, KktOptions, KktSolver, LinearError, LinearOperator,
+    Method as SolveMethod, SaddlePoint, ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
 };
 use nalgebra::{DMatrix, DVector};
 
@@ -314,7 +314,9 @@ fn p1_box_k(p: &P1Box) -> SparseColMat<usize, f64> {
 }
 
 /// The C = 0 P1-P1 KKT is singular (spurious pressure modes) but the displacement is
-/// unique: a consistent right-hand side `A (u*, p*)` must give back `u*` exactly.
+/// unique: a consistent right-hand side `A (u*, p*)` must give back `u*` exactly, with
+/// regularized pivots and, without regularization, through the sparse `LU` fallback (which
+/// must succeed and agree).
 #[test]
 fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() {
     let p = p1_box([12, 4, 4]);
@@ -361,7 +363,9 @@ fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() 
         "displacement differs"
     );
 
-    // The displacement agrees with the sparse LU fallback too.
+    // The displacement agrees with the sparse LU fallback too: without regularization the
+    // zero pivots of the spurious pressure modes send the factorization to LU, which must
+    // then factor the singular but consistent system and solve it.
     let mut lu = KktSolver::new(
         k.symbolic(),
         g.symbolic(),
@@ -373,12 +377,16 @@ fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() 
         },
     )
     .unwrap();
-    if lu.factorize(k.as_ref(), g.as_ref(), None, 0.0).is_ok() {
-        if let Ok(y) = lu.solve(&b) {
-            eprintln!("LU-path report: {:?}", lu.report());
-            assert!(max_diff(&x[..n], &y[..n]) < 1e-8 * max_abs(&truth[..n]));
-        }
-    }
+    lu.factorize(k.as_ref(), g.as_ref(), None, 0.0)
+        .expect("the LU fallback factors the singular KKT");
+    let y = lu
+        .solve(&b)
+        .expect("the LU fallback solves a consistent system");
+    let report = lu.report();
+    eprintln!("LU-path report: {report:?}");
+    assert_eq!(report.method, SolveMethod::Lu, "{report:?}");
+    assert!(report.residual < 1e-12, "{report:?}");
+    assert!(max_diff(&x[..n], &y[..n]) < 1e-8 * max_abs(&truth[..n]));
 
     // Krylov solvers on the same system: CG on K, MINRES on the singular KKT.
     let mut u = vec![0.0; n];

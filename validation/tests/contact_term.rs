@@ -2,7 +2,8 @@
 //! contact, sec. 8.2-8.3 of Francu et al. 2021): its gradient against central differences of
 //! its energy and its Hessian against central differences of its gradient, for half-spaces,
 //! spheres and cylinders, moved obstacles and positive multipliers, away from the kink
-//! `lambda = rho d` where the energy is only C1.
+//! `lambda = rho d` where the energy is only C1; and the projected multiplier update, its
+//! convergence flag and the contact summary against their formulas.
 
 use isochor_mesh::Vec3;
 use isochor_solvers::terms::{Contact, EnergyTerm};
@@ -15,6 +16,14 @@ const TOLERANCE: f64 = 1e-6;
 
 /// Central-difference step (m); the kink is kept at least 100 steps away.
 const STEP: f64 = 1e-6;
+
+/// Smallest distance `|r|` of a vertex from a sphere's centre or a cylinder's axis (m), where
+/// `d = |r| - R` is singular. The Hessian of `d` is `(I - u u^T) / |r|`, so the central
+/// differences of the gradient `-f grad d` err by about `STEP^2 f / |r|^3`. Against a sphere
+/// or cylinder `d >= -R`, so `lambda <= rho_a R` and `f = lambda - rho_a d <= 2 rho_a R <= 4 rho`:
+/// at `|r| = 0.15` the error is about `1e-9 rho`, far inside `TOLERANCE` times the Hessian
+/// scale (at least `rho`); at `|r| ~ STEP` the stencil straddles the centre and means nothing.
+const MIN_RADIAL: f64 = 0.15;
 
 fn vec3() -> impl Strategy<Value = Vec3> {
     (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64).prop_map(|(x, y, z)| Vec3::new(x, y, z))
@@ -87,11 +96,11 @@ proptest! {
                 let (d, _, _) = o.distance(&after[v], t);
                 let r = [rho, 2.0 * rho][a];
                 prop_assume!((lambda[a * obstacles.len() + k] - r * d).abs() > 100.0 * STEP * r);
-                // Away from the centre of a sphere or the axis of a cylinder.
-                prop_assume!(d > -0.15 + match o.shape {
-                    Shape::HalfSpace { .. } => f64::NEG_INFINITY,
-                    Shape::Sphere { radius, .. } | Shape::Cylinder { radius, .. } => -radius,
-                });
+                // At least MIN_RADIAL from the centre of a sphere or the axis of a cylinder,
+                // where `d = |r| - R` is singular.
+                if let Shape::Sphere { radius, .. } | Shape::Cylinder { radius, .. } = o.shape {
+                    prop_assume!(d + radius >= MIN_RADIAL);
+                }
             }
         }
         let (_, g, h) = evaluate(&term, &after);
@@ -117,28 +126,63 @@ proptest! {
         prop_assert!((&h - h.transpose()).abs().max() <= 1e-12 * scale_h);
     }
 
+    /// The projected update `lambda <- max(0, lambda - rho d)` and its convergence flag (every
+    /// multiplier moved by at most `rho * tolerance`), applied twice from zero, against the
+    /// formula with distances known by hand: a floor `z >= 0` (`d = z`) and a ceiling
+    /// `z <= 0.02` (`d = 0.02 - z`), a penalty per candidate, candidates out of vertex order.
+    /// Every candidate starts below the floor, so every floor multiplier is positive after the
+    /// first update and moves in the second (by `rho z`, or to zero when the vertex has lifted
+    /// off by more than `lambda / rho`); vertices above the ceiling push down. The summary
+    /// reports the multipliers' total force and the candidates with a positive one.
     #[test]
-    fn projected_update_releases_and_converges(
-        rho in 0.5..50.0f64,
-        heights in prop::collection::vec(-0.01..0.01f64, 4),
+    fn projected_update_follows_the_formula(
+        rho in prop::collection::vec(0.5..50.0f64, 3),
+        below in prop::collection::vec(-0.01..-1e-4f64, 4),
+        after in prop::collection::vec(-0.01..0.03f64, 4),
+        log_tolerance in -9.0..-2.0f64,
     ) {
-        // Ground z = 0: a vertex below gets a positive multiplier, one above none; an update
-        // at a state with every gap within the tolerance and unchanged multipliers converges.
-        let x: Vec<Vec3> = heights.iter().map(|&z| Vec3::new(0.0, 0.0, z)).collect();
-        let ground = Obstacle::fixed(Shape::HalfSpace { point: Vec3::zeros(), normal: Vec3::z() });
-        let term = Contact::new((0..4).collect(), vec![ground], vec![rho; 4]);
-        term.update(&x, 1e-9);
-        for (l, z) in term.multipliers().iter().zip(&heights) {
-            prop_assert!(*l >= 0.0);
-            prop_assert_eq!(*l > 0.0, *z < 0.0);
+        const CEILING: f64 = 0.02;
+        let floor = Obstacle::fixed(Shape::HalfSpace { point: Vec3::zeros(), normal: Vec3::z() });
+        let ceiling = Obstacle::fixed(Shape::HalfSpace {
+            point: Vec3::new(0.0, 0.0, CEILING),
+            normal: -Vec3::z(),
+        });
+        // Vertex 1 is not a candidate.
+        let candidates = [3usize, 0, 2];
+        let term = Contact::new(candidates.to_vec(), vec![floor, ceiling], rho.clone());
+        let tolerance = 10f64.powf(log_tolerance);
+        let mut expected = vec![0.0; 6];
+        for heights in [&below, &after] {
+            let x: Vec<Vec3> = heights.iter().map(|&z| Vec3::new(0.3, -0.2, z)).collect();
+            let previous = expected.clone();
+            for (a, &v) in candidates.iter().enumerate() {
+                for (k, d) in [heights[v], CEILING - heights[v]].into_iter().enumerate() {
+                    expected[2 * a + k] = (previous[2 * a + k] - rho[a] * d).max(0.0);
+                }
+            }
+            let converged = (0..6).all(|i| (expected[i] - previous[i]).abs() <= rho[i / 2] * tolerance);
+            prop_assert_eq!(term.update(&x, tolerance), converged);
+            let lambda = term.multipliers();
+            for i in 0..6 {
+                // One multiply and one subtraction: a few units of rounding.
+                let scale = previous[i] + rho[i / 2] * 0.03;
+                prop_assert!(
+                    (lambda[i] - expected[i]).abs() <= 4.0 * f64::EPSILON * scale,
+                    "multiplier {i}: {} against {}", lambda[i], expected[i]
+                );
+            }
+            let summary = term.summary(&x);
+            let force: f64 = (0..3).map(|a| lambda[2 * a] - lambda[2 * a + 1]).sum();
+            let size: f64 = lambda.iter().sum();
+            prop_assert!((summary.force.z - force).abs() <= 8.0 * f64::EPSILON * size);
+            prop_assert_eq!(summary.force.x, 0.0);
+            let active = (0..3).filter(|a| lambda[2 * a] + lambda[2 * a + 1] > 0.0).count();
+            prop_assert_eq!(summary.active_vertices, active);
+            let penetration = candidates
+                .iter()
+                .map(|&v| (-heights[v]).max(heights[v] - CEILING))
+                .fold(0.0, f64::max);
+            prop_assert!((summary.max_penetration - penetration).abs() <= f64::EPSILON * CEILING);
         }
-        // Resting exactly on the ground with these forces: no multiplier moves.
-        let flat = vec![Vec3::zeros(); 4];
-        prop_assert!(term.update(&flat, 1e-9));
-        // Lifted off: everything is released.
-        let lifted = vec![Vec3::new(0.0, 0.0, 1.0); 4];
-        term.update(&lifted, 1e-9);
-        prop_assert!(term.multipliers().iter().all(|&l| l == 0.0));
-        prop_assert_eq!(term.summary(&lifted).active_vertices, 0);
     }
 }

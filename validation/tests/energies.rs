@@ -1,7 +1,8 @@
 //! Finite-difference validation of the energy layer: every density's `P` against differences
 //! of `Psi` and `dP/dF` against differences of `P`, the penalties, the tet and triangle
-//! kernels, rest stability, the penalty conditions of Sheen et al. 2021 (sec. 5), PSD
-//! projection and parameter validation.
+//! kernels, rest stability, frame indifference, the penalty conditions of Sheen et al. 2021
+//! (sec. 5), PSD projection and parameter validation, and a negative control showing that the
+//! finite-difference check rejects a stress or tangent wrong by 1e-5.
 //!
 //! One harness, every term: [`density_suite!`] turns one line per density into its full set of
 //! property tests; [`penalty_suite!`] does the same for penalties.
@@ -9,14 +10,14 @@
 use isochor_energies::{
     constrained_neo_hookean, kinematics, project_to_psd, quadratic_neo_hookean,
     standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean, Epidermis,
-    FbarNeoHookean, Hyperelastic, Lame, LogPenalty, Matrix12, Mooney, QuadraticPenalty,
-    SheenPenalty, StableNeoHookean, VolumetricPenalty,
+    FbarNeoHookean, Hyperelastic, Lame, LogPenalty, Matrix12, Matrix9, Mooney, OutOfDomain,
+    QuadraticPenalty, SheenPenalty, StableNeoHookean, VolumetricPenalty,
 };
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
 use isochor_validation::strategies::{
     max_edge, near_identity, rest_tet, rest_triangle, with_determinant,
 };
-use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, SymmetricEigen, Unit, Vector3};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 
@@ -52,15 +53,24 @@ fn to_mat(v: &DVector<f64>) -> Matrix3<f64> {
 }
 
 /// `P` against central differences of `Psi`, `dP/dF` against central differences of `P`, and
-/// symmetry of `dP/dF`. The step is relative to the size of `F`; the floor of the relative
-/// error is the material's modulus `mu` (the natural scale of `P` and `dP/dF` near rest).
+/// symmetry of `dP/dF`. The floor of the relative error is the material's modulus `mu` (the
+/// natural scale of `P` and `dP/dF` near rest).
+///
+/// The step is `STEP` times the size of `F`, but never below `STEP`. A central difference errs
+/// by the truncation `h^2 |Psi'''| / 6` plus the rounding `eps |Psi| / h`. Near-singular `F`
+/// (`det F ~ 1e-3`, entries ~0.1) keeps `Psi` large (Stable neo-Hookean's constant
+/// `lambda alpha^2 / 2` reaches 1e3 `mu`) while `P` is small, so a step of `1e-7` made the
+/// rounding 2e-7 of the floor, a fifth of TOLERANCE (measured); the floor `h >= 1e-6` brings
+/// it to 2e-8, and the truncation stays near `(h / sigma_min)^2 ~ 1e-9` for the smallest
+/// singular value `sigma_min ~ 0.03` of those `F` (the largest tangent error measured over
+/// 256 cases per density: 8e-10).
 fn check_derivatives<M: Hyperelastic + ?Sized>(
     m: &M,
     f: &Matrix3<f64>,
     mu: f64,
 ) -> Result<(), TestCaseError> {
     let x = to_dvec(f);
-    let h = fd::STEP * f.amax();
+    let h = fd::STEP * f.amax().max(1.0);
     let psi = |v: &DVector<f64>| m.energy_density(&to_mat(v)).expect("inside the domain");
     let pk1 = |v: &DVector<f64>| to_dvec(&m.pk1(&to_mat(v)).expect("inside the domain"));
 
@@ -87,6 +97,103 @@ fn check_derivatives<M: Hyperelastic + ?Sized>(
     let asym = relative_error(&a, &a.transpose(), mu);
     prop_assert!(asym < 1e-12, "{}: dP/dF not symmetric ({asym:e})", m.name());
     Ok(())
+}
+
+/// Agreement of `Psi(QF)` with `Psi(F)` and of `P(QF)` with `Q P(F)`, relative to the
+/// first-order effect of rounding: `QF` is `F` rotated with an error of a few `eps` per entry,
+/// which moves `Psi` by about `eps |P| |F|` and `P` by about `eps |dP/dF| |F|`, and the
+/// densities sum terms of size up to `|Psi|` or `|P|` (and `mu`) with rounding. 1e-13 is
+/// about 450 `eps`, for the sums over 9 entries and the logarithms and powers of `J`;
+/// an energy that is not objective errs by order 1 (measured: at most 9e-16 over 9 densities x 64 cases).
+const FRAME_TOLERANCE: f64 = 1e-13;
+
+/// A random rotation: a random axis and an angle in `(-pi, pi)`.
+fn rotation() -> impl Strategy<Value = Matrix3<f64>> {
+    (
+        proptest::array::uniform3(-1.0..1.0f64),
+        -std::f64::consts::PI..std::f64::consts::PI,
+    )
+        .prop_filter_map("the axis must not vanish", |(axis, angle)| {
+            let axis = Vector3::from(axis);
+            (axis.norm() > 0.1)
+                .then(|| Rotation3::from_axis_angle(&Unit::new_normalize(axis), angle).into_inner())
+        })
+}
+
+/// Frame indifference: `Psi(QF) = Psi(F)` and `P(QF) = Q P(F)` for a rotation `Q`.
+fn check_frame_indifference<M: Hyperelastic + ?Sized>(
+    m: &M,
+    f: &Matrix3<f64>,
+    q: &Matrix3<f64>,
+    mu: f64,
+) -> Result<(), TestCaseError> {
+    let fail = |e: OutOfDomain| TestCaseError::fail(e.to_string());
+    let qf = q * f;
+    let (psi, psi_q) = (
+        m.energy_density(f).map_err(fail)?,
+        m.energy_density(&qf).map_err(fail)?,
+    );
+    let (p, p_q) = (m.pk1(f).map_err(fail)?, m.pk1(&qf).map_err(fail)?);
+    let a = m.pk1_derivative(f).map_err(fail)?;
+    let scale_psi = psi.abs().max(p.amax() * f.amax()).max(mu);
+    let scale_p = p.amax().max(a.amax() * f.amax()).max(mu);
+    let psi_error = (psi_q - psi).abs() / scale_psi;
+    let p_error = (p_q - q * p).amax() / scale_p;
+    prop_assert!(
+        psi_error <= FRAME_TOLERANCE,
+        "{}: Psi(QF) - Psi(F) = {psi_error:e} relative",
+        m.name()
+    );
+    prop_assert!(
+        p_error <= FRAME_TOLERANCE,
+        "{}: P(QF) - Q P(F) = {p_error:e} relative",
+        m.name()
+    );
+    Ok(())
+}
+
+/// Size of the defects of the negative control: ten times TOLERANCE.
+const DEFECT: f64 = 1e-5;
+
+/// `inner` with its stress (`tangent == false`) or its tangent wrong in the first diagonal
+/// entry by DEFECT times the scale [`check_derivatives`] measures errors against
+/// (`max(|P|, mu)` or `max(|dP/dF|, mu)`): a diagonal entry, so the symmetry check cannot be
+/// what catches it.
+#[derive(Debug)]
+struct Wrong<M> {
+    inner: M,
+    tangent: bool,
+    mu: f64,
+}
+
+impl<M: Hyperelastic> Hyperelastic for Wrong<M> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn energy_density(&self, f: &Matrix3<f64>) -> Result<f64, OutOfDomain> {
+        self.inner.energy_density(f)
+    }
+
+    fn pk1(&self, f: &Matrix3<f64>) -> Result<Matrix3<f64>, OutOfDomain> {
+        let mut p = self.inner.pk1(f)?;
+        if !self.tangent {
+            p[(0, 0)] += DEFECT * p.amax().max(self.mu);
+        }
+        Ok(p)
+    }
+
+    fn pk1_derivative(&self, f: &Matrix3<f64>) -> Result<Matrix9, OutOfDomain> {
+        let mut a = self.inner.pk1_derivative(f)?;
+        if self.tangent {
+            a[(0, 0)] += DEFECT * a.amax().max(self.mu);
+        }
+        Ok(a)
+    }
+
+    fn is_defined_at(&self, j: f64) -> bool {
+        self.inner.is_defined_at(j)
+    }
 }
 
 /// Outside the domain every evaluation is an [`isochor_energies::OutOfDomain`] error, never NaN.
@@ -133,7 +240,7 @@ macro_rules! density_suite {
             }
 
             proptest! {
-                #![proptest_config(ProptestConfig::with_cases(64))]
+                #![proptest_config(ProptestConfig::with_cases(256))]
 
                 #[test]
                 fn derivatives_regular(p in params(), f in with_determinant(0.05, 20.0, false)) {
@@ -151,6 +258,15 @@ macro_rules! density_suite {
                 }
 
                 #[test]
+                fn frame_indifference(
+                    p in params(),
+                    f in with_determinant(0.05, 20.0, false),
+                    q in rotation(),
+                ) {
+                    check_frame_indifference(&build(&p), &f, &q, p.mu)?;
+                }
+
+                #[test]
                 fn derivatives_inverted(
                     p in params(),
                     f in prop_oneof![
@@ -159,6 +275,28 @@ macro_rules! density_suite {
                     ],
                 ) {
                     check_or_refuse(&build(&p), &f, p.mu)?;
+                }
+            }
+
+            proptest! {
+                #![proptest_config(ProptestConfig::with_cases(16))]
+
+                /// Negative control: [`check_derivatives`] reports a stress or a tangent wrong
+                /// by DEFECT (ten times its tolerance) as failing.
+                #[test]
+                fn finite_differences_reject_a_wrong_derivative(
+                    p in params(),
+                    f in with_determinant(0.05, 20.0, false),
+                ) {
+                    for tangent in [false, true] {
+                        let wrong = Wrong { inner: build(&p), tangent, mu: p.mu };
+                        prop_assert!(
+                            check_derivatives(&wrong, &f, p.mu).is_err(),
+                            "{} with a wrong {} passed",
+                            wrong.name(),
+                            if tangent { "tangent" } else { "stress" }
+                        );
+                    }
                 }
             }
 
@@ -274,7 +412,7 @@ fn check_penalty<U: VolumetricPenalty>(u: &U, j: f64) -> Result<(), TestCaseErro
 macro_rules! penalty_suite {
     ($($name:ident => |$beta:ident| $build:expr, j in $range:expr;)*) => {$(
         proptest! {
-            #![proptest_config(ProptestConfig::with_cases(64))]
+            #![proptest_config(ProptestConfig::with_cases(256))]
             #[test]
             fn $name($beta in 0.0..20.0f64, j in $range) {
                 check_penalty(&$build, j)?;
@@ -290,7 +428,7 @@ penalty_suite! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(256))]
 
     /// Conditions a-e of sec. 5 of Sheen et al. 2021 for `U(J; beta)`, `beta` in `[0, 20]`:
     /// a) `U(1) = 0`, b) `U'(1) = 0`, c) `U''(1) = 1`, d) defined (finite) for every real `J`,
@@ -404,7 +542,7 @@ fn check_tet<M: Hyperelastic + ?Sized>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(256))]
 
     #[test]
     fn tet_kernel_matches_differences(p in params(), (rest, x) in deformed_tet()) {
@@ -461,7 +599,7 @@ fn deformed_triangle() -> impl Strategy<Value = ([Vector3<f64>; 3], [Vector3<f64
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(256))]
 
     #[test]
     fn area_ratio_matches_differences((rest, x) in deformed_triangle()) {
@@ -516,6 +654,32 @@ proptest! {
         let err = relative_error(&hm, &fd::jacobian(grad, &xv, h), scale / (l * l));
         prop_assert!(err < TOLERANCE, "epidermis Hessian relative error {err:e}");
         prop_assert!(relative_error(&hm, &hm.transpose(), scale / (l * l)) < 1e-12);
+    }
+
+    /// Frame indifference of the epidermis energy (eq. 16 of Sheen et al. 2021): a rigid
+    /// motion `x -> Q x + b` of the deformed triangle keeps the energy and rotates each
+    /// vertex's gradient, to FRAME_TOLERANCE of their sizes (at least `lambda_e A`, per `l`).
+    #[test]
+    fn epidermis_frame_indifference(
+        (rest, x) in deformed_triangle(),
+        q in rotation(),
+        b in proptest::array::uniform3(-1.0..1.0f64),
+        lambda_e in 0.1..100.0f64,
+        gamma in 0.0..5.0f64,
+    ) {
+        let t = triangle::RestTriangle::new(&rest).unwrap();
+        let skin = Epidermis::new(lambda_e, gamma).unwrap();
+        let moved = x.map(|v| q * v + Vector3::from(b));
+        let scale = lambda_e * t.area();
+        let (e, e_moved) = (skin.energy(&x, &t), skin.energy(&moved, &t));
+        prop_assert!((e_moved - e).abs() <= FRAME_TOLERANCE * e.max(scale), "{e} against {e_moved}");
+        let (g, g_moved) = (skin.gradient(&x, &t), skin.gradient(&moved, &t));
+        let g_scale = g.amax().max(scale / max_edge(&rest));
+        for a in 0..3 {
+            let rotated = q * g.fixed_rows::<3>(3 * a);
+            let error = (g_moved.fixed_rows::<3>(3 * a) - rotated).amax() / g_scale;
+            prop_assert!(error <= FRAME_TOLERANCE, "vertex {a}: {error:e}");
+        }
     }
 }
 

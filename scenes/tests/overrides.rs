@@ -1,0 +1,419 @@
+//! Every flat `--set` key ([`FLAT_KEYS`]) reaches what the solver is given: set on a built-in
+//! scene, its value is read back from the built problem, stepping and settings (or, for the
+//! output keys, from the loaded scene), and was not there before. A bad value for each key is
+//! an error that names the key.
+
+use isochor_mesh::{Vec3, Zones};
+use isochor_scenes::overrides::FLAT_KEYS;
+use isochor_scenes::problem::{build, Built};
+use isochor_scenes::{load_scene, Override, Scene, SceneError};
+use isochor_solvers::{
+    Epidermis, Kappa, LinearSolver, Load, Method, Simulation, Stepping, ZonalEnergy,
+};
+
+/// One flat key: the scene and overrides it needs first, a value that differs from the
+/// scene's own, how to read it back, and a value that must be refused.
+struct Case {
+    key: &'static str,
+    scene: &'static str,
+    setup: &'static [&'static str],
+    value: &'static str,
+    reached: fn(&Scene, &Built) -> bool,
+    bad: &'static str,
+}
+
+/// A coarse cantilever (24 tets, `mixed-p1`, quasi-static).
+const STATIC: &str = "cantilever";
+/// A coarse falling cube (48 tets, `zonal`, implicit Euler).
+const DYNAMIC: &str = "dynamic-cube";
+
+fn iterative(s: &Built) -> Option<(f64, usize)> {
+    match s.settings.linear {
+        LinearSolver::Iterative {
+            tolerance,
+            max_iterations,
+        } => Some((tolerance, max_iterations)),
+        LinearSolver::Direct => None,
+    }
+}
+
+fn k_ring(b: &Built, k: usize) -> bool {
+    b.problem.zones == Some(Zones::k_ring_cover(&b.problem.mesh, k).unwrap())
+}
+
+fn epidermis(b: &Built) -> Option<Epidermis> {
+    b.problem.material.epidermis
+}
+
+const CASES: &[Case] = &[
+    Case {
+        key: "method",
+        scene: STATIC,
+        setup: &[],
+        value: "standard",
+        reached: |_, b| b.problem.method == Method::Standard,
+        bad: "newton",
+    },
+    Case {
+        key: "nu",
+        scene: STATIC,
+        setup: &[],
+        value: "0.45",
+        reached: |_, b| b.problem.material.nu == 0.45,
+        bad: "0.7",
+    },
+    Case {
+        key: "E",
+        scene: STATIC,
+        setup: &[],
+        value: "1.5e5",
+        reached: |_, b| (b.problem.material.young() - 1.5e5).abs() <= 1e-15 * 1.5e5,
+        bad: "-1.0",
+    },
+    Case {
+        key: "young",
+        scene: STATIC,
+        setup: &[],
+        value: "2.5e5",
+        reached: |_, b| (b.problem.material.young() - 2.5e5).abs() <= 1e-15 * 2.5e5,
+        bad: "soft",
+    },
+    Case {
+        key: "mu",
+        scene: STATIC,
+        setup: &[],
+        value: "7e4",
+        reached: |_, b| b.problem.material.mu == 7e4,
+        bad: "-5.0",
+    },
+    Case {
+        key: "rho",
+        scene: STATIC,
+        setup: &[],
+        value: "1200.0",
+        reached: |_, b| b.problem.material.density == 1200.0,
+        bad: "-1.0",
+    },
+    Case {
+        key: "density",
+        scene: STATIC,
+        setup: &[],
+        value: "900.0",
+        reached: |_, b| b.problem.material.density == 900.0,
+        bad: "heavy",
+    },
+    Case {
+        key: "lambda",
+        scene: STATIC,
+        setup: &[],
+        value: "3e5",
+        reached: |_, b| b.problem.material.zonal_lambda == 3e5,
+        bad: "-1.0",
+    },
+    Case {
+        key: "beta",
+        scene: STATIC,
+        setup: &[],
+        value: "4.0",
+        reached: |_, b| b.problem.material.beta == 4.0,
+        bad: "-1.0",
+    },
+    Case {
+        key: "epsilon",
+        scene: STATIC,
+        setup: &[],
+        value: "0.2",
+        reached: |_, b| b.problem.material.epsilon == 0.2,
+        bad: "1.5",
+    },
+    Case {
+        key: "kappa",
+        scene: STATIC,
+        setup: &[],
+        value: "lambda",
+        reached: |_, b| b.problem.material.kappa == Kappa::Lambda,
+        bad: "shear",
+    },
+    Case {
+        key: "zonal_energy",
+        scene: STATIC,
+        setup: &[],
+        value: "standard",
+        reached: |_, b| b.problem.material.zonal_energy == ZonalEnergy::Standard,
+        bad: "elastic",
+    },
+    Case {
+        key: "dual_base_nu",
+        scene: STATIC,
+        setup: &[],
+        value: "0.3",
+        reached: |_, b| b.problem.material.dual_base_nu == Some(0.3),
+        bad: "0.6",
+    },
+    Case {
+        key: "epidermis",
+        scene: STATIC,
+        setup: &[],
+        value: "true",
+        reached: |_, b| {
+            epidermis(b)
+                == Some(Epidermis {
+                    young: 266e3,
+                    poisson: 0.45,
+                    gamma: 1.0,
+                })
+        },
+        bad: "yes",
+    },
+    Case {
+        key: "epidermis_young",
+        scene: STATIC,
+        setup: &["epidermis=true"],
+        value: "5e4",
+        reached: |_, b| epidermis(b).is_some_and(|e| e.young == 5e4),
+        bad: "-1.0",
+    },
+    Case {
+        key: "epidermis_nu",
+        scene: STATIC,
+        setup: &["epidermis=true"],
+        value: "0.3",
+        reached: |_, b| epidermis(b).is_some_and(|e| e.poisson == 0.3),
+        bad: "0.7",
+    },
+    Case {
+        key: "epidermis_gamma",
+        scene: STATIC,
+        setup: &["epidermis=true"],
+        value: "2.0",
+        reached: |_, b| epidermis(b).is_some_and(|e| e.gamma == 2.0),
+        bad: "-1.0",
+    },
+    Case {
+        key: "gravity",
+        scene: STATIC,
+        setup: &[],
+        value: "[0.0, 0.0, -3.7]",
+        reached: |_, b| b.problem.loads == [Load::Gravity(Vec3::new(0.0, 0.0, -3.7))],
+        bad: "[0.0, -9.8]",
+    },
+    Case {
+        key: "steps",
+        scene: STATIC,
+        setup: &[],
+        value: "7",
+        reached: |_, b| b.stepping == Stepping::QuasiStatic { steps: 7 },
+        bad: "0",
+    },
+    Case {
+        key: "frames",
+        scene: DYNAMIC,
+        setup: &[],
+        value: "5",
+        reached: |_, b| matches!(b.stepping, Stepping::ImplicitEuler { frames: 5, .. }),
+        bad: "0",
+    },
+    Case {
+        key: "dt",
+        scene: DYNAMIC,
+        setup: &[],
+        value: "0.004",
+        reached: |_, b| matches!(b.stepping, Stepping::ImplicitEuler { dt, .. } if dt == 0.004),
+        bad: "-0.01",
+    },
+    Case {
+        key: "max_iterations",
+        scene: STATIC,
+        setup: &[],
+        value: "17",
+        reached: |_, b| b.settings.max_iterations == 17,
+        bad: "0",
+    },
+    Case {
+        key: "force_tolerance",
+        scene: STATIC,
+        setup: &[],
+        value: "1e-7",
+        reached: |_, b| b.settings.force_tolerance == 1e-7,
+        bad: "0.0",
+    },
+    Case {
+        key: "constraint_tolerance",
+        scene: STATIC,
+        setup: &[],
+        value: "1e-9",
+        reached: |_, b| b.settings.constraint_tolerance == 1e-9,
+        bad: "-1.0",
+    },
+    Case {
+        key: "max_backtracks",
+        scene: STATIC,
+        setup: &[],
+        value: "9",
+        reached: |_, b| b.settings.max_backtracks == 9,
+        bad: "-1",
+    },
+    Case {
+        key: "max_dual_iterations",
+        scene: STATIC,
+        setup: &[],
+        value: "44",
+        reached: |_, b| b.settings.max_dual_iterations == 44,
+        bad: "-3",
+    },
+    Case {
+        key: "project_hessians",
+        scene: STATIC,
+        setup: &[],
+        value: "true",
+        reached: |_, b| b.settings.project_hessians,
+        bad: "maybe",
+    },
+    Case {
+        key: "linear",
+        scene: STATIC,
+        setup: &[],
+        value: "iterative",
+        reached: |_, b| iterative(b) == Some((1e-8, 1000)),
+        bad: "cholesky",
+    },
+    Case {
+        key: "linear_tolerance",
+        scene: STATIC,
+        setup: &[],
+        value: "1e-6",
+        reached: |_, b| iterative(b).is_some_and(|(t, _)| t == 1e-6),
+        bad: "tight",
+    },
+    Case {
+        key: "linear_max_iterations",
+        scene: STATIC,
+        setup: &[],
+        value: "77",
+        reached: |_, b| iterative(b).is_some_and(|(_, n)| n == 77),
+        bad: "-1",
+    },
+    Case {
+        key: "zones",
+        scene: STATIC,
+        setup: &["method=zonal", "zones.kind=global", "zones.k=1"],
+        value: "k-ring",
+        reached: |_, b| k_ring(b, 1),
+        bad: "rings",
+    },
+    Case {
+        key: "k",
+        scene: STATIC,
+        setup: &["method=zonal", "zones=k-ring", "zones.k=1"],
+        value: "2",
+        reached: |_, b| k_ring(b, 2),
+        bad: "0",
+    },
+    Case {
+        key: "every",
+        scene: STATIC,
+        setup: &[],
+        value: "3",
+        reached: |s, _| s.output.every == 3,
+        bad: "0",
+    },
+    Case {
+        key: "vtu",
+        scene: STATIC,
+        setup: &[],
+        value: "false",
+        reached: |s, _| !s.output.vtu,
+        bad: "no",
+    },
+    Case {
+        key: "plots",
+        scene: STATIC,
+        setup: &[],
+        value: "false",
+        reached: |s, _| !s.output.plots,
+        bad: "2",
+    },
+];
+
+/// Loads `scene` at `res = 1` with `setup` and then `extra`, builds it and creates the
+/// simulation (which checks the solver settings); the scene and what was built, or the
+/// first error.
+fn load(scene: &str, setup: &[&str], extra: Option<String>) -> Result<(Scene, Built), String> {
+    let overrides = ["res=1"]
+        .iter()
+        .chain(setup)
+        .map(|s| s.to_string())
+        .chain(extra)
+        .map(|s| Override::parse(&s))
+        .collect::<Result<Vec<_>, SceneError>>()
+        .map_err(|e| e.to_string())?;
+    let scene = load_scene(scene, None, &overrides).map_err(|e| e.to_string())?;
+    let built = build(&scene).map_err(|e| e.to_string())?;
+    Simulation::new(built.problem.clone(), built.settings).map_err(|e| e.to_string())?;
+    Ok((scene, built))
+}
+
+/// The table covers every flat key once.
+#[test]
+fn every_flat_key_has_a_case() {
+    let mut keys: Vec<&str> = CASES.iter().map(|c| c.key).collect();
+    keys.sort_unstable();
+    let mut flat: Vec<&str> = FLAT_KEYS.iter().map(|(k, _)| *k).collect();
+    flat.sort_unstable();
+    assert_eq!(keys, flat);
+}
+
+/// Each flat key's value is read back from the built problem, stepping and settings (or the
+/// loaded scene), and the scene without the override does not already have it.
+#[test]
+fn every_flat_key_reaches_the_problem() {
+    for case in CASES {
+        let (scene, built) = load(case.scene, case.setup, None)
+            .unwrap_or_else(|e| panic!("{} without the override: {e}", case.key));
+        assert!(
+            !(case.reached)(&scene, &built),
+            "{}: the scene already has {}",
+            case.key,
+            case.value
+        );
+        let set = format!("{}={}", case.key, case.value);
+        let (scene, built) = load(case.scene, case.setup, Some(set.clone()))
+            .unwrap_or_else(|e| panic!("--set {set}: {e}"));
+        assert!(
+            (case.reached)(&scene, &built),
+            "--set {set} did not arrive: {:?} {:?} {:?} {:?} {:?}",
+            built.problem.material,
+            built.stepping,
+            built.settings,
+            built.problem.loads,
+            scene.output
+        );
+    }
+}
+
+/// A bad value of each flat key is refused with an error naming the key: the dotted key it
+/// stands for (scene errors), or the flat name (material parameters, solver settings).
+#[test]
+fn a_bad_value_of_every_flat_key_is_a_named_error() {
+    for case in CASES {
+        let set = format!("{}={}", case.key, case.bad);
+        let error = match load(case.scene, case.setup, Some(set.clone())) {
+            Ok(_) => panic!("--set {set} was accepted"),
+            Err(e) => e,
+        };
+        let dotted = FLAT_KEYS
+            .iter()
+            .find(|(k, _)| *k == case.key)
+            .map(|(_, d)| *d)
+            .unwrap_or(case.key);
+        // The scene's key, a material parameter, or a solver setting, by name.
+        let named = error.contains(&format!("key '{dotted}'"))
+            || error.contains(&format!("parameter {} = ", case.key))
+            || error.contains(&format!("setting: {} ", case.key));
+        eprintln!("--set {set}: {error}");
+        assert!(
+            named,
+            "--set {set}: the error does not name the key: {error}"
+        );
+    }
+}
