@@ -1,14 +1,19 @@
 //! Volume preservation: nu = 0.5 exactly, the stretched cylinder of Fig. 13 of Francu et al.
-//! 2021, the two tets of Fig. 2 and the indented puck of Fig. 9 of Sheen et al. 2021.
+//! 2021, the two tets of Fig. 2 and the indented puck of Fig. 9 of Sheen et al. 2021; and the
+//! per-tet pressure of the cube of Fig. 7 of Sheen et al.
 //!
 //! Run with `-- --nocapture` to see every run's numbers and wall time.
 
 mod common;
 
-use common::{assert_converged, probe, run};
+use common::{
+    assert_converged, incompressible_volume_bound, probe, run, unloaded_volume_tolerance,
+};
+use isochor_scenes::RunResult;
 use std::time::Instant;
 
-/// `|volume change| < 1e-8` with `mixed-p1` and `zonal` at nu = 0.5 exactly.
+/// `mixed-p1` and `zonal` at nu = 0.5 exactly keep the volume to the constraint tolerance
+/// (`incompressible_volume_bound`: 1e-10 plus rounding).
 fn incompressible(scene: &str, method: &str, sets: &[&str]) {
     let mut all = vec![format!("method={method}"), "nu=0.5".to_string()];
     all.extend(sets.iter().map(|s| s.to_string()));
@@ -18,9 +23,10 @@ fn incompressible(scene: &str, method: &str, sets: &[&str]) {
         &all.iter().map(String::as_str).collect::<Vec<_>>(),
     );
     assert_converged(&r, &format!("{scene} {method} nu = 0.5"));
+    let bound = incompressible_volume_bound(r.tets);
     assert!(
-        r.volume_change.abs() < 1e-8,
-        "{scene} {method} nu = 0.5: volume change {:e}",
+        r.volume_change.abs() <= bound,
+        "{scene} {method} nu = 0.5: volume change {:e} > {bound:e}",
         r.volume_change
     );
 }
@@ -110,65 +116,154 @@ fn stretched_cylinder_standard_changes_volume() {
     standard_changes_volume(r.volume_change);
 }
 
-/// Fig. 2 of Sheen et al.: the left tet is pressed to 5% of its width. Without a constraint
-/// its volume is lost (the paper, pressing it flat: 46.6% of the total remains; here about
-/// (1 + 0.05) / 2); with one global zone the total is kept and the free tet doubles (to
-/// 2 - 0.05 of its volume).
+/// Fig. 2 of Sheen et al.: the left tet is pressed to 5% of its width (its volume ratio is
+/// prescribed: 0.05). Without a constraint the free tet's apex feels only its own tet, so it
+/// stays at rest and the total ratio is (0.05 + 1) / 2 = 0.525 exactly (the paper, pressing
+/// it flat: 46.6% of the total remains), to `unloaded_volume_tolerance`. With one global zone
+/// the total is kept to the constraint tolerance (`incompressible_volume_bound`) and the free
+/// tet takes what the pressed one lost: 2 - 0.05 = 1.95, to twice that.
 #[test]
 fn two_tets_lose_or_keep_the_volume() {
+    let pressed = 0.05;
     let free = run("two-tets", Some("unconstrained"), &[]);
     assert_converged(&free, "two-tets unconstrained");
     let total = probe(&free, "total_volume_ratio");
     let right = probe(&free, "free_tet_volume_ratio");
-    eprintln!("unconstrained: total {total:.4}, free tet {right:.4}");
-    assert!((0.45..0.55).contains(&total), "total volume ratio {total}");
+    eprintln!("unconstrained: total {total:.16}, free tet {right:.16}");
+    let tol = unloaded_volume_tolerance(free.vertices);
+    assert!((right - 1.0).abs() <= tol, "free tet volume ratio {right}");
+    assert!(
+        (total - (1.0 + pressed) / 2.0).abs() <= tol / 2.0,
+        "total volume ratio {total}"
+    );
 
     let kept = run("two-tets", Some("constrained"), &[]);
     assert_converged(&kept, "two-tets constrained");
     let total = probe(&kept, "total_volume_ratio");
     let right = probe(&kept, "free_tet_volume_ratio");
-    eprintln!("constrained: total {total:.10}, free tet {right:.6}");
-    assert!((total - 1.0).abs() < 1e-8, "total volume ratio {total}");
-    assert!((right - 1.95).abs() < 1e-6, "free tet volume ratio {right}");
+    eprintln!("constrained: total {total:.16}, free tet {right:.16}");
+    let bound = incompressible_volume_bound(kept.tets);
+    assert!((total - 1.0).abs() <= bound, "total volume ratio {total}");
+    assert!(
+        (right - (2.0 - pressed)).abs() <= 2.0 * bound,
+        "free tet volume ratio {right}"
+    );
 }
 
-/// Fig. 9 of Sheen et al.: the puck indented to 50% of its height. Zonal (lambda = 100 kPa,
-/// beta = 9) keeps the volume to 1e-8 and ends with no inverted tet. beta = 0 versus 9:
-/// the paper finds beta = 9 converges faster; the iterations are printed, not asserted.
-fn bulge_puck(res: &str) {
+/// Fig. 9 of Sheen et al.: the puck indented to 50% of its height in 50 steps, zonal with
+/// lambda = 100 kPa and beta = 9 (the scene) and beta = 0. Both converge, keep the volume to
+/// the constraint tolerance and never invert a tet (the paper: "completely free of inverted
+/// tets", and beta = 0 "does not converge to an infeasible state").
+///
+/// The paper finds beta = 9 faster (14.84% in runtime, from slow convergence of beta = 0
+/// past 25% indentation); what that claim reduces to here is that beta = 9 needs no more
+/// Newton iterations than beta = 0. The speed-up is not reproduced: both take 3 iterations
+/// per step at res 3 and at res 6 (150 in all). Here no tet comes near inversion (the
+/// smallest volume ratio at 50% is 0.41 with beta = 0 and 0.51 with beta = 9 at res 6),
+/// while on the paper's mesh the moving boundary starts to invert elements past 25%, where
+/// it saw beta = 0 slow down.
+fn bulge_puck(res: &str) -> [RunResult; 2] {
     let start = Instant::now();
     let nine = run("bulge-puck", Some("zonal"), &[res]);
-    assert_converged(&nine, "bulge-puck zonal beta = 9");
-    assert!(nine.volume_change.abs() < 1e-8, "{:e}", nine.volume_change);
-    assert_eq!(
-        probe(&nine, "inverted_tets"),
-        0.0,
-        "inverted tets at the end"
-    );
     let zero = run("bulge-puck", Some("zonal"), &[res, "beta=0"]);
+    for (beta, r) in [("9", &nine), ("0", &zero)] {
+        let what = format!("bulge-puck {res} zonal beta = {beta}");
+        assert_converged(r, &what);
+        let bound = incompressible_volume_bound(r.tets);
+        assert!(
+            r.volume_change.abs() <= bound,
+            "{what}: volume change {:e} > {bound:e}",
+            r.volume_change
+        );
+        assert_eq!(r.max_inverted_tets, 0, "{what}: inverted tets");
+    }
     eprintln!(
-        "bulge-puck {res}: beta = 9: {} Newton iterations, {:.2} s, max inverted {}, final inverted {}; \
-         beta = 0: {} Newton iterations, {:.2} s, converged {}, max inverted {}, final inverted {}  ({:.1} s)",
+        "bulge-puck {res}: beta = 9: {} Newton iterations, {:.2} s; beta = 0: {} Newton iterations, {:.2} s ({:.1} s)",
         nine.newton_iterations,
         nine.wall_time_s,
-        nine.max_inverted_tets,
-        probe(&nine, "inverted_tets"),
         zero.newton_iterations,
         zero.wall_time_s,
-        zero.converged,
-        zero.max_inverted_tets,
-        zero.probes["inverted_tets"],
         start.elapsed().as_secs_f64()
     );
+    assert!(
+        nine.newton_iterations <= zero.newton_iterations,
+        "beta = 9 takes {} Newton iterations, beta = 0 {}",
+        nine.newton_iterations,
+        zero.newton_iterations
+    );
+    [nine, zero]
 }
 
+/// The coarse puck (648 tets). Its `bulge_height` (the highest rise of the top surface at
+/// rest radius >= 30 mm) is not asserted: the puck's lattice has rings at 16.7 mm (the
+/// indenter's edge), 33.3 mm and 50 mm only, so one element spans the drop from the indenter
+/// to the rim, and the whole top surface goes down (-0.89 mm at its highest rim vertex; the
+/// side wall's top edge moves out by 10 mm, twice as much as at res 6). The bulge appears
+/// from res 6 on (+0.52 mm; +0.64 mm at res 9), see the paper-mesh test.
 #[test]
 fn bulge_puck_zonal_keeps_the_volume_coarse() {
     bulge_puck("res=3");
 }
 
+/// The paper-size puck (5184 tets), where the bulge is resolved: with the zone the top
+/// surface rises beyond 30 mm (+0.52 mm), more than with standard neo-Hookean at nu = 0.4545,
+/// which loses volume (4.0% here, 5.1% in the paper), and at nu = 0.495, which locks (no
+/// visible bulging in the paper's Fig. 9; here its rim goes down, -0.15 mm).
 #[test]
-#[ignore = "long: the paper-size puck (5184 tets, 50 steps)"]
+#[ignore = "long: the paper-size puck (5184 tets, 50 steps), four runs, about 90 s in the dev profile"]
 fn bulge_puck_zonal_keeps_the_volume_paper_mesh() {
-    bulge_puck("res=6");
+    let [nine, _] = bulge_puck("res=6");
+    let bulge = probe(&nine, "bulge_height");
+    assert!(bulge > 0.0, "no bulge: {bulge}");
+    for variant in ["standard-0.4545", "standard-0.495"] {
+        let r = run("bulge-puck", Some(variant), &["res=6"]);
+        assert_converged(&r, variant);
+        let standard = probe(&r, "bulge_height");
+        eprintln!(
+            "{variant}: bulge {:.3} mm (zonal {:.3} mm), volume change {:+.2}%",
+            1e3 * standard,
+            1e3 * bulge,
+            100.0 * r.volume_change
+        );
+        assert!(
+            standard < bulge,
+            "{variant} bulges {standard} >= zonal {bulge}"
+        );
+    }
+}
+
+/// Fig. 7 of Sheen et al.: the per-tet pressure of the cube standing under gravity (res 5,
+/// 750 tets) is irregular for standard neo-Hookean at nu = 0.495 (locking) and smooth with
+/// one global zone and a local penalty. `pressure_checkerboard` is the mean jump across
+/// interior faces over the standard deviation: `2 / sqrt(pi)` (1.128) for uncorrelated
+/// noise, 2 for a perfect checkerboard, near 0 for a smooth field. Standard's pressure is the
+/// roughest (0.71 against 0.55 for zonal and 0.46 for mixed-p1 at nu = 0.5); none
+/// checkerboards: every index is below that of uncorrelated noise. (The tet pressure of
+/// mixed-p1 is the average of its four nodal pressures, which filters nodal oscillations:
+/// Sheen et al.'s one-ring checkerboard does not show in it.)
+#[test]
+fn pressure_cube_standard_pressure_is_the_roughest() {
+    let index = |variant: &str| {
+        let r = run("pressure-cube", Some(variant), &["res=5"]);
+        assert_converged(&r, variant);
+        probe(&r, "pressure_checkerboard")
+    };
+    let standard = index("standard");
+    let one_ring = index("one-ring");
+    let zonal = index("zonal");
+    eprintln!(
+        "checkerboard index: standard {standard:.3}, one-ring {one_ring:.3}, zonal {zonal:.3}"
+    );
+    let noise = 2.0 / std::f64::consts::PI.sqrt();
+    for (what, c) in [
+        ("standard", standard),
+        ("one-ring", one_ring),
+        ("zonal", zonal),
+    ] {
+        assert!(c > 0.0 && c < noise, "{what}: index {c}");
+    }
+    assert!(
+        standard > zonal && standard > one_ring,
+        "standard {standard}, one-ring {one_ring}, zonal {zonal}"
+    );
 }

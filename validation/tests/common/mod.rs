@@ -119,42 +119,74 @@ pub fn try_run(scene: &str, variant: Option<&str>, sets: &[&str]) -> Outcome {
     }
 }
 
-/// Checks that an outcome is a converged state with finite output or a clear error, and
-/// returns a one-line description of it.
+/// Checks that an outcome is a converged state with finite output, a clear error, or a run
+/// stopped by a named solver error whose last accepted state (the one its probes measure) is
+/// finite, and returns a one-line description of it.
 pub fn check_outcome(what: &str, outcome: &Outcome) -> Result<String, String> {
     match outcome {
         Outcome::Panic(m) => Err(format!("{what}: panicked: {m}")),
         Outcome::Error(e) if e.trim().is_empty() => Err(format!("{what}: empty error")),
         Outcome::Error(e) => Ok(format!("{what}: error: {e}")),
         Outcome::Ran(r) => {
-            let finite = r.volume_change.is_finite() && r.probes.values().all(|v| v.is_finite());
+            let last = r.history.last();
+            let finite = r.volume_change.is_finite()
+                && r.probes.values().all(|v| v.is_finite())
+                && last.is_none_or(|s| {
+                    s.kinetic_energy.is_finite()
+                        && s.elastic_energy.is_finite()
+                        && s.external_energy.is_finite()
+                });
+            if !finite {
+                return Err(format!(
+                    "{what}: non-finite {} state: volume change {:e}, probes {:?}, last step {:?}, error {:?}",
+                    if r.converged {
+                        "converged"
+                    } else {
+                        "last accepted"
+                    },
+                    r.volume_change,
+                    r.probes,
+                    last.map(|s| (s.kinetic_energy, s.elastic_energy, s.external_energy)),
+                    r.error
+                ));
+            }
             if r.converged {
-                if finite {
-                    Ok(format!(
-                        "{what}: converged, {} Newton iterations, volume change {:+.2e}, max inverted {}, probes {:?}",
-                        r.newton_iterations, r.volume_change, r.max_inverted_tets, r.probes
-                    ))
-                } else {
-                    Err(format!(
-                        "{what}: converged with non-finite output {:?}",
-                        r.probes
-                    ))
-                }
-            } else {
-                match &r.error {
-                    Some(e) if !e.trim().is_empty() => Ok(format!(
-                        "{what}: stopped at step {:?}/{}: {e}{}",
-                        r.failed_step,
-                        r.steps_requested,
-                        if finite {
-                            ""
-                        } else {
-                            " (probes of the last state NaN)"
-                        }
-                    )),
-                    _ => Err(format!("{what}: not converged without an error message")),
-                }
+                return Ok(format!(
+                    "{what}: converged, {} Newton iterations, volume change {:+.2e}, max inverted {}, probes {:?}",
+                    r.newton_iterations, r.volume_change, r.max_inverted_tets, r.probes
+                ));
+            }
+            match (&r.error, r.failed_step) {
+                (Some(e), Some(step)) if !e.trim().is_empty() => Ok(format!(
+                    "{what}: stopped at step {step}/{} ({} accepted, probes of the last one {:?}): {e}",
+                    r.steps_requested, r.steps, r.probes
+                )),
+                _ => Err(format!(
+                    "{what}: not converged without an error message and a failed step ({:?}, {:?})",
+                    r.error, r.failed_step
+                )),
             }
         }
     }
+}
+
+/// The largest `|V / V0 - 1|` a converged run may show when its volume constraints have zero
+/// compliance (nu = 0.5, or the zonal method's zones) and their rows partition the body
+/// (nodal P1 volumes, or one global zone). The saddle-point and dual solvers stop only when
+/// every row meets `|phi_i - (C p)_i| <= tol V_i` (`Settings::constraint_tolerance`, 1e-10,
+/// which no scene here overrides); with `C = 0` and `phi_i` the volume change the row
+/// measures, `|V - V0| = |sum_i phi_i| <= tol sum_i V_i = tol V0`. To that the rounding of
+/// summing `tets` tet volumes is added (a few machine epsilons per tet).
+pub fn incompressible_volume_bound(tets: usize) -> f64 {
+    isochor_solvers::Settings::default().constraint_tolerance + 16.0 * tets as f64 * f64::EPSILON
+}
+
+/// How far from 1 the volume ratio of a tet that no load reaches (its free vertices feel only
+/// its own energy, at rest) may end in a converged run of a mesh with `vertices` vertices.
+/// Newton accepts a force residual of `force_tolerance` (1e-9) times the force scale
+/// (`Simulation::force_scale`: `mu h^2 sqrt(n)` without loads, the nodal force of a unit
+/// strain over the mesh), i.e. the force of a strain of at most `force_tolerance sqrt(n)`;
+/// a strain `s` changes a tet's volume ratio by at most `3 s`.
+pub fn unloaded_volume_tolerance(vertices: usize) -> f64 {
+    3.0 * isochor_solvers::Settings::default().force_tolerance * (vertices as f64).sqrt()
 }
