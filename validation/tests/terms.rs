@@ -21,7 +21,7 @@ const TOLERANCE: f64 = 1e-6;
 /// Central-difference step relative to the unit box. A central difference errs by about
 /// `STEP^2 / l^2` (truncation; `l` the smallest deformed length scale) plus `eps / STEP`
 /// times the ratio of the differenced quantity to its derivative (rounding), relative to
-/// the derivative. These boxes have cells of size 0.5 and every tet's volume ratio at least
+/// the derivative. These boxes have cells of 1 x 1 x 0.5 and every tet's volume ratio at least
 /// 0.3, so `l` stays above about 0.1: both parts are near 1e-10, and the largest errors
 /// measured over 64 cases are 1.0e-9 (the gradient of gravity, whose energy is ten times
 /// its gradient) and 3.7e-10 (Hessians), three orders inside TOLERANCE. TOLERANCE would be
