@@ -81,7 +81,7 @@ fn vtu_round_trip_is_exact() {
     .unwrap();
     let file = read_vtu_file(&path).unwrap();
     assert_eq!(file.points, mesh.positions());
-    assert_eq!(file.tets, mesh.tets());
+    assert_eq!(file.cells, mesh.tets().as_flattened());
     assert_eq!(file.point_data, point_data);
     assert_eq!(file.cell_data.len(), 2);
     assert_eq!(file.cell_data[1], cell_data[1]);
