@@ -217,8 +217,9 @@ impl ElementMesh {
             connectivity.extend_from_slice(t);
             for [a, b] in TET_EDGES {
                 let edge = sorted([t[a], t[b]]);
-                // The input's mid-edge node on the same two corners (re-orientation may have
-                // permuted the corners).
+                // The input's mid-edge node on the same two corners: re-orientation permuted
+                // the corners, so `t` and `given[..4]` hold the same four distinct nodes and
+                // the search always succeeds.
                 let k = TET_EDGES
                     .iter()
                     .position(|&[i, j]| sorted([given[i], given[j]]) == edge)
@@ -249,6 +250,7 @@ impl ElementMesh {
                 connectivity.push(mid);
             }
         }
+        // Every mid-edge node is used by some element, so every entry is set.
         let edges = edge_of
             .into_iter()
             .map(|edge| edge.map_or([0, 0], |(edge, _)| edge))

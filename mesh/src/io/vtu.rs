@@ -547,6 +547,8 @@ fn parse(
         .map(Vec3::from_column_slice)
         .collect();
 
+    // The largest cell has 10 points.
+    num_cells.checked_mul(10).ok_or_else(|| too_many("cells"))?;
     let types_array = find("Cells", Some("types"))?;
     let types: Vec<usize> = values(path, text, types_array, num_cells)?;
     let at =
@@ -573,7 +575,7 @@ fn parse(
         ));
     };
     let n = element.num_nodes();
-    let num_indices = num_cells.checked_mul(n).ok_or_else(|| too_many("cells"))?;
+    let num_indices = num_cells * n;
     let offsets_array = find("Cells", Some("offsets"))?;
     let offsets: Vec<usize> = values(path, text, offsets_array, num_cells)?;
     for e in 0..num_cells {
