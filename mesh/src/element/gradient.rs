@@ -6,7 +6,9 @@ use nalgebra::{Matrix3, SMatrix, SVector};
 
 /// `sum_a x[nodes[a]] grad_a^T`, the gradient of the interpolated map
 /// `x(.) = sum_a x[nodes[a]] N_a(.)` given the gradients `grad_a` of its shape functions
-/// (pairs beyond the shorter of `nodes` and `gradients` are ignored). It is
+/// (pairs beyond the shorter of `nodes` and `gradients` are ignored). The shape functions
+/// form a partition of unity (`sum_a grad_a = 0`), so the sum is taken as
+/// `sum_a (x_a - x_0) grad_a^T`, which does not depend on where the origin is. It is
 ///
 /// - with the rest-space gradients `dN_a/dX` at a quadrature point, the deformation gradient
 ///   `F = dx/dX = sum_a x_a (dN_a/dX)^T` (Bonet and Wood, "Nonlinear Continuum Mechanics for
@@ -20,10 +22,18 @@ pub fn deformation_gradient<const D: usize>(
     nodes: &[usize],
     gradients: &[SVector<f64, D>],
 ) -> SMatrix<f64, 3, D> {
+    let Some(&first) = nodes.first() else {
+        return SMatrix::zeros();
+    };
+    let origin = x[first];
+    // The first node's difference is zero.
     nodes
         .iter()
         .zip(gradients)
-        .fold(SMatrix::zeros(), |f, (&i, g)| f + x[i] * g.transpose())
+        .skip(1)
+        .fold(SMatrix::zeros(), |f, (&i, g)| {
+            f + (x[i] - origin) * g.transpose()
+        })
 }
 
 /// The determinant and inverse of the Jacobian `dX/dxi` of `element` (nodes `nodes` over the

@@ -84,10 +84,22 @@ impl RestGeometry {
         &self.gradients[start..start + n]
     }
 
+    /// The weights of every point of element `e`, [`RestGeometry::weight`] for `q` in order.
+    pub fn element_weights(&self, e: usize) -> &[f64] {
+        let nq = self.num_points();
+        &self.weights[e * nq..(e + 1) * nq]
+    }
+
+    /// The shape gradients of every point of element `e`, [`RestGeometry::gradients`] for `q`
+    /// in order (point-major, `kind.num_nodes()` per point).
+    pub fn element_gradients(&self, e: usize) -> &[Vec3] {
+        let n = self.kind.num_nodes() * self.num_points();
+        &self.gradients[e * n..(e + 1) * n]
+    }
+
     /// Rest volume of element `e` by this rule: `sum_q w_q det(dX/dxi)(xi_q)`.
     pub fn element_volume(&self, e: usize) -> f64 {
-        let nq = self.num_points();
-        self.weights[e * nq..(e + 1) * nq].iter().sum()
+        self.element_weights(e).iter().sum()
     }
 
     /// Total rest volume by this rule.
