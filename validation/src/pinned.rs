@@ -137,7 +137,12 @@ pub fn check(group: &str, key: &str, value: f64, tolerance: Tolerance) -> Result
     let mismatch = |pin: &Pin| {
         let diff = (value - pin.value).abs();
         let bound = pin.tolerance.bound(pin.value);
-        (!(diff <= bound)).then(|| {
+        // A NaN on either side is a mismatch.
+        let within = matches!(
+            diff.partial_cmp(&bound),
+            Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+        );
+        (!within).then(|| {
             format!(
                 "{group}/{key}: computed {value:.12e}, pinned {:.12e} ({:?}), difference {diff:.3e} > {bound:.3e}",
                 pin.value, pin.provenance
