@@ -1,39 +1,58 @@
-//! Element (P0) volume constraints: one pressure per tet (sec. 4.6 of Francu et al. 2021).
+//! Element (P0) volume constraints: one pressure per element (sec. 4.6 of Francu et al. 2021).
 
-use crate::tets::{check_len, inverse_bulk_modulus, MeasuredTets};
+use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements, Shapes};
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
-use isochor_mesh::{TetMesh, Vec3};
+use isochor_mesh::element::TetQuadrature;
+use isochor_mesh::{ElementMesh, TetMesh, Vec3};
 use rayon::prelude::*;
 
-/// One constraint per tet, `phi_e = V_e Phi(J_e)` (`v_e - V_e` for the linear measure), with
-/// compliance `C_e = V_e / kappa` (sec. 4.6; eq. 18 with `N_p = 1`).
+/// One constraint per element, `phi_e = integral_e Phi(J) dV = sum_q W_q Phi(J_q)` (`v_e - V_e`
+/// for the linear measure), with compliance `C_e = V_e / kappa` (sec. 4.6; eq. 18 with
+/// `N_p = 1`).
 ///
-/// Row `e` is tet `e`. The Jacobian pattern holds 12 entries per tet (row `e`, the tet's DOFs
-/// vertex-major) and the geometric stiffness pattern one 12x12 block per tet.
+/// Row `e` is element `e`. The Jacobian pattern holds `3n` entries per element of `n` nodes
+/// (row `e`, the element's DOFs node-major) and the geometric stiffness pattern one
+/// `3n x 3n` block per element.
 ///
-/// With as many constraints as tets, about `5n` on a tet mesh against `3n` DOFs, this
+/// With as many constraints as tets, about `5n` on a 4-node tet mesh against `3n` DOFs, this
 /// discretization violates the counting condition (eq. 1) and locks (Appendix A).
 #[derive(Debug, Clone)]
 pub struct ElementConstraints {
-    tets: MeasuredTets,
+    elements: MeasuredElements,
     inverse_kappa: f64,
 }
 
 impl ElementConstraints {
-    /// Element constraints on `mesh` with the given measure and bulk modulus `kappa`
-    /// (`f64::INFINITY` for an incompressible material: `C = 0` exactly).
+    /// Element constraints on the 4-node tets of `mesh` (the one-point rule, exact) with the
+    /// given measure and bulk modulus `kappa` (`f64::INFINITY` for an incompressible
+    /// material: `C = 0` exactly).
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
     pub fn new(mesh: &TetMesh, measure: Measure, kappa: f64) -> Result<Self, ConstraintError> {
+        let linear = ElementMesh::linear(mesh.clone());
+        Self::on_elements(&linear, TetQuadrature::Degree1, measure, kappa)
+    }
+
+    /// Element constraints on the elements of `mesh`, integrated with `rule` (see
+    /// [`crate::exact_rule`]).
+    ///
+    /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
+    pub fn on_elements(
+        mesh: &ElementMesh,
+        rule: TetQuadrature,
+        measure: Measure,
+        kappa: f64,
+    ) -> Result<Self, ConstraintError> {
+        let inverse_kappa = inverse_bulk_modulus(kappa)?;
         Ok(ElementConstraints {
-            tets: MeasuredTets::new(mesh, measure),
-            inverse_kappa: inverse_bulk_modulus(kappa)?,
+            elements: MeasuredElements::new(mesh, rule, measure)?,
+            inverse_kappa,
         })
     }
 
     /// The measure of the constraints.
     pub fn measure(&self) -> Measure {
-        self.tets.measure()
+        self.elements.measure()
     }
 }
 
@@ -46,28 +65,28 @@ impl ConstraintSet for ElementConstraints {
     }
 
     fn num_constraints(&self) -> usize {
-        self.tets.len()
+        self.elements.len()
     }
 
     fn values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
-        self.tets.fill_values(x, out)
+        self.elements.check_positions(x)?;
+        self.elements.fill_values(x, Shapes::One, out)
     }
 
     fn jacobian_pattern(&self) -> Vec<(usize, usize)> {
-        (0..self.tets.len())
-            .flat_map(|e| self.tets.dofs(e).map(|dof| (e, dof)))
+        (0..self.elements.len())
+            .flat_map(|e| self.elements.dofs(e).map(move |dof| (e, dof)))
             .collect()
     }
 
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
-        self.tets
-            .fill_gradients(x, out, self.tets.len(), 1, 1.0, |e| e)
+        self.elements.check_positions(x)?;
+        self.elements
+            .fill_gradients(x, Shapes::One, out, self.elements.len(), |e| e)
     }
 
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {
-        self.tets.hessian_pattern(0..self.tets.len())
+        self.elements.hessian_pattern(0..self.elements.len())
     }
 
     fn geometric_stiffness_values(
@@ -76,36 +95,37 @@ impl ConstraintSet for ElementConstraints {
         multipliers: &[f64],
         out: &mut [f64],
     ) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
-        check_len("multipliers", self.tets.len(), multipliers.len())?;
-        self.tets
-            .fill_hessians(x, out, self.tets.len(), |e| e, |e| multipliers[e])
+        self.elements.check_positions(x)?;
+        check_len("multipliers", self.elements.len(), multipliers.len())?;
+        self.elements
+            .fill_hessians(x, out, self.elements.len(), |e| e, |e, _| multipliers[e])
     }
 
     fn compliance(&self) -> Compliance {
         Compliance::Diagonal(
-            (0..self.tets.len())
-                .map(|e| self.tets.rest_volume(e) * self.inverse_kappa)
+            (0..self.elements.len())
+                .map(|e| self.elements.rest_volume(e) * self.inverse_kappa)
                 .collect(),
         )
     }
 
-    /// The tet's last vertex: each element pressure is ordered after one of its vertices.
+    /// The element's last corner: each element pressure is ordered after one of its vertices.
     fn anchor_vertex(&self, row: usize) -> Option<usize> {
-        (row < self.tets.len()).then(|| self.tets.tet(row)[3])
+        (row < self.elements.len()).then(|| self.elements.corners(row)[3])
     }
 
-    /// The element multiplier itself (linear measure) or divided by `J_e` (logarithmic).
+    /// The element multiplier itself (linear measure) or divided by the element's mean `J`
+    /// (logarithmic).
     fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64> {
-        if self.tets.check_positions(x).is_err() {
+        if self.elements.check_positions(x).is_err() {
             return Vec::new();
         }
-        if multipliers.len() != self.tets.len() {
+        if multipliers.len() != self.elements.len() {
             return Vec::new();
         }
-        (0..self.tets.len())
+        (0..self.elements.len())
             .into_par_iter()
-            .map(|e| self.tets.true_pressure(e, x, multipliers[e]))
+            .map(|e| self.elements.true_pressure(e, x, multipliers[e]))
             .collect()
     }
 }
@@ -113,7 +133,7 @@ impl ConstraintSet for ElementConstraints {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tets::test_meshes::{moved, two_tets};
+    use crate::measured::test_meshes::{moved, two_tets};
 
     #[test]
     fn values_compliance_and_pressures() {
@@ -159,7 +179,7 @@ mod tests {
         let mut phi = [0.0; 2];
         assert!(matches!(
             set.values(&x, &mut phi),
-            Err(ConstraintError::NonPositiveVolume { tet: 1, .. })
+            Err(ConstraintError::NonPositiveVolumeRatio { element: 1, .. })
         ));
         let mut g = vec![0.0; 24];
         assert!(set.jacobian_values(&x, &mut g).is_err());

@@ -3,11 +3,15 @@
 /// Why a constraint set could not be evaluated or built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ConstraintError {
-    /// A tet has non-positive volume where the logarithmic measure needs `v_e > 0`.
+    /// An element has a volume ratio `J <= 0` at a quadrature point, where the logarithmic
+    /// measure needs `J > 0`.
     #[error(
-        "tet {tet} has volume {volume:e} <= 0, outside the domain of the logarithmic constraint"
+        "element {element} has J = {j:e} <= 0 at a quadrature point, outside the domain of the logarithmic constraint"
     )]
-    NonPositiveVolume { tet: usize, volume: f64 },
+    NonPositiveVolumeRatio { element: usize, j: f64 },
+    /// The rest geometry of the mesh could not be evaluated (a folded element).
+    #[error("invalid mesh: {reason}")]
+    InvalidMesh { reason: String },
     /// An invalid construction parameter.
     #[error("invalid constraint parameter {name} = {value}: {reason}")]
     InvalidParameter {

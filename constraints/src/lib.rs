@@ -2,13 +2,17 @@
 //!
 //! Volume constraint sets seen by the solvers only through [`ConstraintSet`]: values
 //! `phi(x)`, Jacobian `G`, geometric stiffness `sum_i p_i Hess(phi_i)` and compliance `C`
-//! (Francu et al. 2021, eq. 15-19 and 23; Sheen et al. 2021, eq. 6-8).
+//! (Francu et al. 2021, eq. 15-19 and 23; Sheen et al. 2021, eq. 6-8), on meshes of 4- or
+//! 10-node tetrahedra ([`isochor_mesh::ElementMesh`]).
 //!
-//! - [`volume`]: the signed tet volume, its gradient and Hessian (eq. 25-26), the only
-//!   geometric kernels; everything else assembles them.
-//! - [`Measure`]: linear `J - 1` or logarithmic `log J` (sec. 6) per element.
-//! - [`ElementConstraints`] (P0, sec. 4.6), [`NodalConstraints`] (P1, eq. 27, consistent or
-//!   lumped compliance) and [`ZonalConstraints`] (Sheen et al. eq. 6-9).
+//! - [`Measure`]: linear `J - 1` or logarithmic `log J` (sec. 6), a density of `F` whose
+//!   integrals over the elements, by quadrature, make every constraint row; its derivatives
+//!   come from the element kernel of `isochor-energies`, the one chain rule of both crates.
+//! - [`ElementConstraints`] (P0, sec. 4.6), [`NodalConstraints`] (P1 on the corners, eq. 27,
+//!   consistent or lumped compliance; Taylor-Hood P2-P1 on 10-node tets) and
+//!   [`ZonalConstraints`] (Sheen et al. eq. 6-9). Each has a constructor on a linear
+//!   [`isochor_mesh::TetMesh`] (the one-point rule) and one on an element mesh with a
+//!   quadrature rule ([`exact_rule`] is the recommended one).
 //! - [`jacobian_matrix`] and [`geometric_stiffness_matrix`] for analysis.
 //!
 //! Sign convention: the Lagrangian is `L = E + p^T phi` with `phi_e = v_e - V_e`, so the
@@ -20,9 +24,8 @@ mod element;
 mod error;
 mod matrix;
 mod measure;
+mod measured;
 mod nodal;
-mod tets;
-pub mod volume;
 mod zonal;
 
 pub use constraint_set::{Compliance, ConstraintSet};
@@ -32,3 +35,17 @@ pub use matrix::{geometric_stiffness_matrix, jacobian_matrix};
 pub use measure::Measure;
 pub use nodal::{NodalCompliance, NodalConstraints};
 pub use zonal::ZonalConstraints;
+
+use isochor_mesh::element::{TetElement, TetQuadrature};
+
+/// The cheapest rule that integrates the linear measure exactly on elements of `kind`:
+/// `W_q (J_q - 1) L_j(xi_q) = w_q (det(dx/dxi) - det(dX/dxi)) L_j(xi_q)`, a polynomial of
+/// degree `3p - 2` in `xi` for elements of order `p`, curved or not. That is the one-point rule
+/// for 4-node tets and the degree-5 rule for 10-node tets; it also makes zone volumes and the
+/// total volume change (the sum of the nodal rows) exact.
+pub fn exact_rule(kind: TetElement) -> TetQuadrature {
+    match kind {
+        TetElement::Tet4 => TetQuadrature::Degree1,
+        TetElement::Tet10 => TetQuadrature::Degree5,
+    }
+}

@@ -1,45 +1,54 @@
-//! Nodal (P1) volume constraints: one pressure per vertex, linear pressure shape functions
-//! (eq. 27 of Francu et al. 2021), with consistent or lumped compliance (eq. 18).
+//! Nodal (P1) volume constraints: one pressure per corner vertex, linear pressure shape
+//! functions (eq. 27 of Francu et al. 2021; on 10-node tets the Taylor-Hood P2-P1 pair), with
+//! consistent or lumped compliance (eq. 18).
 
-use crate::tets::{check_len, inverse_bulk_modulus, MeasuredTets};
+use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements, Shapes};
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
-use isochor_mesh::{TetMesh, Vec3};
+use isochor_mesh::element::TetQuadrature;
+use isochor_mesh::{ElementMesh, TetMesh, Vec3};
 use rayon::prelude::*;
 
-/// How the nodal compliance `C = (1/kappa) int N^T N dV` (eq. 18) is integrated.
+/// How the nodal compliance `C = (1/kappa) integral L^T L dV` (eq. 18) is integrated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum NodalCompliance {
-    /// The exact mass-matrix-like integral: `V_e (1 + delta_ij) / (20 kappa)` for the 4x4
-    /// node pairs of every tet ([`Compliance::Sparse`]).
+    /// The exact mass-matrix-like integral `(1/kappa) integral_e L_i L_j dV` for the 4x4
+    /// corner pairs of every element (`V_e (1 + delta_ij) / (20 kappa)` on a straight
+    /// element; [`Compliance::Sparse`]).
     Consistent,
-    /// Row sums of the consistent matrix: `sum_e V_e / (4 kappa)` over the tets incident to
-    /// each vertex ([`Compliance::Diagonal`]).
+    /// Row sums of the consistent matrix: `(1/kappa) sum_e integral_e L_i dV` over the
+    /// elements incident to each vertex (`V_e / (4 kappa)` each on a straight element;
+    /// [`Compliance::Diagonal`]).
     #[default]
     Lumped,
 }
 
-/// One constraint per vertex `j`: `phi_j = sum_{e incident to j} m_e / 4` with
-/// `m_e = V_e Phi(J_e)` (eq. 27; sec. 6 for the logarithmic form).
+/// One constraint per corner vertex `j`: `phi_j = integral L_j Phi(J) dV`, with `L_j` the
+/// linear shape function of corner `j` (on a 10-node tet, the barycentric coordinate of the
+/// corner), by quadrature: `sum_e sum_q W_q L_j(xi_q) Phi(J_q)` (eq. 27; sec. 6 for the
+/// logarithmic form). On a 4-node tet with the one-point rule, `phi_j = sum_e m_e / 4` with
+/// `m_e = V_e Phi(J_e)`.
 ///
-/// Row `j` is vertex `j` of the mesh; a vertex in no tet gives an empty row `0 = 0` (clean
-/// such meshes before solving with zero compliance). The Jacobian pattern holds 48 entries
-/// per tet: for each of its 4 vertices (in the tet's order) a row of 12 entries over the
-/// tet's DOFs. The geometric stiffness of tet `e` is `((p_a + p_b + p_c + p_d) / 4)` times
-/// the Hessian of `m_e`, one 12x12 block per tet.
+/// Row `j` is vertex `j` of the mesh (node `j`: corners come first); a vertex in no element
+/// gives an empty row `0 = 0` (clean such meshes before solving with zero compliance). The
+/// Jacobian pattern holds `4 x 3n` entries per element of `n` nodes: for each of its 4
+/// corners (in the element's order) a row over the element's DOFs. The geometric stiffness
+/// of element `e` is `sum_q W_q p(xi_q) d^2 Phi(J_q)/dx^2`, with `p = sum_j p_j L_j` the
+/// pressure field, one `3n x 3n` block per element.
 ///
 /// With `n` constraints against `3n` DOFs the counting condition (eq. 1) holds with room to
-/// spare; on structured boxes `G` has 3 zero singular values (spurious pressure modes).
+/// spare; on structured boxes of 4-node tets `G` has 3 zero singular values (spurious
+/// pressure modes).
 #[derive(Debug, Clone)]
 pub struct NodalConstraints {
-    tets: MeasuredTets,
+    elements: MeasuredElements,
     inverse_kappa: f64,
     compliance: NodalCompliance,
 }
 
 impl NodalConstraints {
-    /// Nodal constraints on `mesh` with the given measure, bulk modulus `kappa`
-    /// (`f64::INFINITY` for an incompressible material: `C = 0` exactly) and compliance
-    /// integration.
+    /// Nodal constraints on the 4-node tets of `mesh` (the one-point rule, exact for the
+    /// linear measure) with the given measure, bulk modulus `kappa` (`f64::INFINITY` for an
+    /// incompressible material: `C = 0` exactly) and compliance integration.
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
     pub fn new(
@@ -48,22 +57,39 @@ impl NodalConstraints {
         kappa: f64,
         compliance: NodalCompliance,
     ) -> Result<Self, ConstraintError> {
+        let linear = ElementMesh::linear(mesh.clone());
+        Self::on_elements(&linear, TetQuadrature::Degree1, measure, kappa, compliance)
+    }
+
+    /// Nodal constraints on the corners of the elements of `mesh`, integrated with `rule` (see
+    /// [`crate::exact_rule`]); the compliance is integrated exactly whatever `rule` is.
+    ///
+    /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
+    pub fn on_elements(
+        mesh: &ElementMesh,
+        rule: TetQuadrature,
+        measure: Measure,
+        kappa: f64,
+        compliance: NodalCompliance,
+    ) -> Result<Self, ConstraintError> {
+        let inverse_kappa = inverse_bulk_modulus(kappa)?;
         Ok(NodalConstraints {
-            tets: MeasuredTets::new(mesh, measure),
-            inverse_kappa: inverse_bulk_modulus(kappa)?,
+            elements: MeasuredElements::new(mesh, rule, measure)?,
+            inverse_kappa,
             compliance,
         })
     }
 
     /// The measure of the constraints.
     pub fn measure(&self) -> Measure {
-        self.tets.measure()
+        self.elements.measure()
     }
 
-    /// The average `(p_a + p_b + p_c + p_d) / 4` of the multipliers of tet `e`'s vertices.
-    fn tet_multiplier(&self, e: usize, multipliers: &[f64]) -> f64 {
-        self.tets
-            .tet(e)
+    /// The average `(p_a + p_b + p_c + p_d) / 4` of the multipliers of element `e`'s corners:
+    /// the pressure at its centroid.
+    fn element_multiplier(&self, e: usize, multipliers: &[f64]) -> f64 {
+        self.elements
+            .corners(e)
             .iter()
             .map(|&v| multipliers[v])
             .sum::<f64>()
@@ -80,43 +106,42 @@ impl ConstraintSet for NodalConstraints {
     }
 
     fn num_constraints(&self) -> usize {
-        self.tets.num_vertices()
+        self.elements.num_vertices()
     }
 
     fn values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
+        self.elements.check_positions(x)?;
         check_len("constraint values", self.num_constraints(), out.len())?;
-        let mut m = vec![0.0; self.tets.len()];
-        self.tets.fill_values(x, &mut m)?;
+        let mut m = vec![0.0; 4 * self.elements.len()];
+        self.elements.fill_values(x, Shapes::Corners, &mut m)?;
         out.fill(0.0);
-        for (e, m_e) in m.into_iter().enumerate() {
-            for v in self.tets.tet(e) {
-                out[v] += m_e / 4.0;
+        for (e, rows) in m.chunks_exact(4).enumerate() {
+            for (v, m_j) in self.elements.corners(e).into_iter().zip(rows) {
+                out[v] += m_j;
             }
         }
         Ok(())
     }
 
     fn jacobian_pattern(&self) -> Vec<(usize, usize)> {
-        (0..self.tets.len())
+        (0..self.elements.len())
             .flat_map(|e| {
-                let dofs = self.tets.dofs(e);
-                self.tets
-                    .tet(e)
+                self.elements
+                    .corners(e)
                     .into_iter()
-                    .flat_map(move |row| dofs.map(|dof| (row, dof)))
+                    .flat_map(move |row| self.elements.dofs(e).map(move |dof| (row, dof)))
             })
             .collect()
     }
 
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
-        self.tets
-            .fill_gradients(x, out, self.tets.len(), 4, 0.25, |e| e)
+        self.elements.check_positions(x)?;
+        self.elements
+            .fill_gradients(x, Shapes::Corners, out, self.elements.len(), |e| e)
     }
 
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {
-        self.tets.hessian_pattern(0..self.tets.len())
+        self.elements.hessian_pattern(0..self.elements.len())
     }
 
     fn geometric_stiffness_values(
@@ -125,14 +150,14 @@ impl ConstraintSet for NodalConstraints {
         multipliers: &[f64],
         out: &mut [f64],
     ) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
+        self.elements.check_positions(x)?;
         check_len("multipliers", self.num_constraints(), multipliers.len())?;
-        self.tets.fill_hessians(
+        self.elements.fill_hessians(
             x,
             out,
-            self.tets.len(),
+            self.elements.len(),
             |e| e,
-            |e| self.tet_multiplier(e, multipliers),
+            |e, q| self.elements.corner_interpolation(e, q, multipliers),
         )
     }
 
@@ -141,20 +166,21 @@ impl ConstraintSet for NodalConstraints {
         match self.compliance {
             NodalCompliance::Lumped => {
                 let mut diagonal = vec![0.0; self.num_constraints()];
-                for e in 0..self.tets.len() {
-                    for v in self.tets.tet(e) {
-                        diagonal[v] += self.tets.rest_volume(e) * scale / 4.0;
+                for e in 0..self.elements.len() {
+                    let products = self.elements.corner_products(e);
+                    for (v, row) in self.elements.corners(e).into_iter().zip(products) {
+                        diagonal[v] += row.iter().sum::<f64>() * scale;
                     }
                 }
                 Compliance::Diagonal(diagonal)
             }
             NodalCompliance::Consistent => Compliance::Sparse(
-                (0..self.tets.len())
+                (0..self.elements.len())
                     .flat_map(|e| {
-                        let t = self.tets.tet(e);
-                        let c = self.tets.rest_volume(e) * scale / 20.0;
+                        let t = self.elements.corners(e);
+                        let products = self.elements.corner_products(e);
                         (0..4).flat_map(move |a| {
-                            (0..4).map(move |b| (t[a], t[b], if a == b { 2.0 * c } else { c }))
+                            (0..4).map(move |b| (t[a], t[b], products[a][b] * scale))
                         })
                     })
                     .collect(),
@@ -167,20 +193,20 @@ impl ConstraintSet for NodalConstraints {
         (row < self.num_constraints()).then_some(row)
     }
 
-    /// The average of the tet's 4 nodal multipliers, divided by `J_e` for the logarithmic
-    /// measure.
+    /// The average of the element's 4 corner multipliers, divided by the element's mean `J`
+    /// for the logarithmic measure.
     fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64> {
-        if self.tets.check_positions(x).is_err() {
+        if self.elements.check_positions(x).is_err() {
             return Vec::new();
         }
         if multipliers.len() != self.num_constraints() {
             return Vec::new();
         }
-        (0..self.tets.len())
+        (0..self.elements.len())
             .into_par_iter()
             .map(|e| {
-                self.tets
-                    .true_pressure(e, x, self.tet_multiplier(e, multipliers))
+                self.elements
+                    .true_pressure(e, x, self.element_multiplier(e, multipliers))
             })
             .collect()
     }
@@ -189,7 +215,7 @@ impl ConstraintSet for NodalConstraints {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tets::test_meshes::{moved, two_tets};
+    use crate::measured::test_meshes::{moved, two_tets};
 
     fn dense(c: &Compliance, n: usize) -> Vec<Vec<f64>> {
         let mut m = vec![vec![0.0; n]; n];

@@ -1,43 +1,59 @@
-//! Zonal volume constraints: one constraint per zone of tets, zones possibly overlapping
+//! Zonal volume constraints: one constraint per zone of elements, zones possibly overlapping
 //! (eq. 6-9 of Sheen et al. 2021).
 
-use crate::tets::{check_len, inverse_bulk_modulus, MeasuredTets};
-use crate::volume::tet_volume;
+use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements, Shapes};
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
-use isochor_mesh::{BoundarySurface, TetMesh, Vec3, Zones};
+use isochor_mesh::element::TetQuadrature;
+use isochor_mesh::{ElementMesh, ElementSurface, TetMesh, Vec3, Zones};
 use rayon::prelude::*;
 
-/// One constraint per zone `j`: `c_j = sum_{e in zone j} (v_e - V_e)` (eq. 6), hard by
-/// default (`C = 0`, eq. 7-8), optionally compliant ([`ZonalConstraints::with_bulk_modulus`]).
+/// One constraint per zone `j`: `c_j = sum_{e in zone j} integral_e (J - 1) dV` (eq. 6; the
+/// zone's volume change), hard by default (`C = 0`, eq. 7-8), optionally compliant
+/// ([`ZonalConstraints::with_bulk_modulus`]).
 ///
-/// Zones may overlap; a tet in several zones contributes to each of their rows. The
-/// Jacobian pattern holds, for every zone in order and every tet of the zone in order, 12
-/// entries (the zone's row over the tet's DOFs): zone rows are dense over the zone. The
-/// geometric stiffness holds one 12x12 block per tet that belongs to any zone, weighted by
-/// the sum of the multipliers of the zones that contain it (eq. 9 differentiated twice).
+/// Zones may overlap; an element in several zones contributes to each of their rows. The
+/// Jacobian pattern holds, for every zone in order and every element of the zone in order,
+/// `3n` entries (the zone's row over the element's DOFs): zone rows are dense over the zone.
+/// The geometric stiffness holds one `3n x 3n` block per element that belongs to any zone,
+/// weighted by the sum of the multipliers of the zones that contain it (eq. 9 differentiated
+/// twice).
 #[derive(Debug, Clone)]
 pub struct ZonalConstraints {
-    tets: MeasuredTets,
+    elements: MeasuredElements,
     zones: Vec<Vec<usize>>,
     rest_zone_volumes: Vec<f64>,
     compliance: Vec<f64>,
-    /// `(zone, tet)` of every Jacobian block.
+    /// `(zone, element)` of every Jacobian block.
     entries: Vec<(usize, usize)>,
-    /// Tets in at least one zone, ascending: one geometric stiffness block each.
+    /// Elements in at least one zone, ascending: one geometric stiffness block each.
     covered: Vec<usize>,
-    /// The zones containing each tet of the mesh (empty outside every zone).
-    zones_of_tet: Vec<Vec<usize>>,
+    /// The zones containing each element of the mesh (empty outside every zone).
+    zones_of_element: Vec<Vec<usize>>,
     /// Outward boundary surface of every zone.
-    boundaries: Vec<BoundarySurface>,
+    boundaries: Vec<ElementSurface>,
 }
 
 impl ZonalConstraints {
-    /// Hard zonal constraints on `mesh`, one per zone of `zones`.
+    /// Hard zonal constraints on the 4-node tets of `mesh` (the one-point rule, exact), one
+    /// per zone of `zones`.
+    ///
+    /// Errors: those of [`ZonalConstraints::on_elements`].
+    pub fn new(mesh: &TetMesh, zones: &Zones) -> Result<Self, ConstraintError> {
+        let linear = ElementMesh::linear(mesh.clone());
+        Self::on_elements(&linear, TetQuadrature::Degree1, zones)
+    }
+
+    /// Hard zonal constraints on the elements of `mesh`, one per zone of `zones` (sets of
+    /// element indices), integrated with `rule` (see [`crate::exact_rule`]).
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] if there are no zones,
-    /// [`ConstraintError::InvalidZone`] for an empty zone, a tet index outside the mesh, or a
-    /// face shared by more than two of the zone's tets.
-    pub fn new(mesh: &TetMesh, zones: &Zones) -> Result<Self, ConstraintError> {
+    /// [`ConstraintError::InvalidZone`] for an empty zone, an element index outside the mesh,
+    /// or a face shared by more than two of the zone's elements.
+    pub fn on_elements(
+        mesh: &ElementMesh,
+        rule: TetQuadrature,
+        zones: &Zones,
+    ) -> Result<Self, ConstraintError> {
         if zones.is_empty() {
             return Err(ConstraintError::InvalidParameter {
                 name: "zones",
@@ -45,8 +61,8 @@ impl ZonalConstraints {
                 reason: "at least one zone is needed",
             });
         }
-        let num_tets = mesh.num_tets();
-        let mut zones_of_tet = vec![Vec::new(); num_tets];
+        let num_elements = mesh.num_elements();
+        let mut zones_of_element = vec![Vec::new(); num_elements];
         let mut entries = Vec::new();
         for (z, zone) in zones.iter().enumerate() {
             if zone.is_empty() {
@@ -56,41 +72,44 @@ impl ZonalConstraints {
                 });
             }
             for &e in zone {
-                if e >= num_tets {
+                if e >= num_elements {
                     return Err(ConstraintError::InvalidZone {
                         zone: z,
-                        reason: format!("tet {e} is not in the mesh ({num_tets} tets)"),
+                        reason: format!("tet {e} is not in the mesh ({num_elements} tets)"),
                     });
                 }
-                zones_of_tet[e].push(z);
+                zones_of_element[e].push(z);
                 entries.push((z, e));
             }
         }
+        let elements = MeasuredElements::new(mesh, rule, Measure::Linear)?;
         let zones: Vec<Vec<usize>> = zones.iter().map(<[usize]>::to_vec).collect();
         let rest_zone_volumes = zones
             .iter()
-            .map(|zone| zone.iter().map(|&e| mesh.rest_volumes()[e]).sum())
+            .map(|zone| zone.iter().map(|&e| elements.rest_volume(e)).sum())
             .collect();
         let boundaries = zones
             .iter()
             .enumerate()
             .map(|(z, zone)| {
-                BoundarySurface::of_tets(mesh, zone).map_err(|err| ConstraintError::InvalidZone {
-                    zone: z,
-                    reason: err.to_string(),
+                ElementSurface::of_elements(mesh, zone).map_err(|err| {
+                    ConstraintError::InvalidZone {
+                        zone: z,
+                        reason: err.to_string(),
+                    }
                 })
             })
             .collect::<Result<_, _>>()?;
         Ok(ZonalConstraints {
-            tets: MeasuredTets::new(mesh, Measure::Linear),
+            elements,
             compliance: vec![0.0; zones.len()],
-            covered: (0..num_tets)
-                .filter(|&e| !zones_of_tet[e].is_empty())
+            covered: (0..num_elements)
+                .filter(|&e| !zones_of_element[e].is_empty())
                 .collect(),
             zones,
             rest_zone_volumes,
             entries,
-            zones_of_tet,
+            zones_of_element,
             boundaries,
         })
     }
@@ -106,49 +125,55 @@ impl ZonalConstraints {
         Ok(self)
     }
 
-    /// Rest volume of every zone.
+    /// Rest volume of every zone, `sum_e sum_q W_q` over its elements.
     pub fn rest_zone_volumes(&self) -> &[f64] {
         &self.rest_zone_volumes
     }
 
-    /// Outward boundary surface of zone `z`: the faces of its tets not shared by two of its
-    /// tets ([`BoundarySurface::of_tets`]).
+    /// Outward boundary surface of zone `z`: the faces of its elements not shared by two of
+    /// its elements ([`ElementSurface::of_elements`]).
     ///
     /// Errors: [`ConstraintError::InvalidZone`] if `z` is not a zone.
-    pub fn boundary(&self, z: usize) -> Result<&BoundarySurface, ConstraintError> {
+    pub fn boundary(&self, z: usize) -> Result<&ElementSurface, ConstraintError> {
         self.boundaries
             .get(z)
             .ok_or_else(|| no_such_zone(z, self.zones.len()))
     }
 
-    /// Deformed volume of zone `z` as the sum of its element volumes.
+    /// Deformed volume of zone `z` by quadrature, `sum_e sum_q W_q J_q` over its elements
+    /// (exact with [`crate::exact_rule`]: `W_q J_q = w_q det(dx/dxi)`, a polynomial of degree
+    /// `3p - 3`).
     ///
     /// Errors: wrong length of `x`, or `z` not a zone.
     pub fn zone_volume(&self, z: usize, x: &[Vec3]) -> Result<f64, ConstraintError> {
-        self.tets.check_positions(x)?;
+        self.elements.check_positions(x)?;
         let zone = self
             .zones
             .get(z)
             .ok_or_else(|| no_such_zone(z, self.zones.len()))?;
         Ok(zone
             .iter()
-            .map(|&e| tet_volume(&self.tets.tet(e).map(|v| x[v])))
+            .map(|&e| self.elements.deformed_volume(e, x))
             .sum())
     }
 
     /// Deformed volume of zone `z` from its boundary only (divergence theorem, the
-    /// optimization noted after eq. 8): `sum over boundary faces of x0 . (x1 x x2) / 6`.
-    /// Equal to [`ZonalConstraints::zone_volume`] up to rounding for any `x`.
+    /// optimization noted after eq. 8; [`ElementSurface::enclosed_volume`], exact on 3- and
+    /// 6-node faces). Equal to [`ZonalConstraints::zone_volume`] up to rounding for any `x`
+    /// when the rule is exact.
     ///
     /// Errors: wrong length of `x`, or `z` not a zone.
     pub fn zone_boundary_volume(&self, z: usize, x: &[Vec3]) -> Result<f64, ConstraintError> {
-        self.tets.check_positions(x)?;
+        self.elements.check_positions(x)?;
         Ok(self.boundary(z)?.enclosed_volume(x))
     }
 
-    /// The sum of the multipliers of the zones containing tet `e`.
-    fn tet_multiplier(&self, e: usize, multipliers: &[f64]) -> f64 {
-        self.zones_of_tet[e].iter().map(|&z| multipliers[z]).sum()
+    /// The sum of the multipliers of the zones containing element `e`.
+    fn element_multiplier(&self, e: usize, multipliers: &[f64]) -> f64 {
+        self.zones_of_element[e]
+            .iter()
+            .map(|&z| multipliers[z])
+            .sum()
     }
 }
 
@@ -162,10 +187,10 @@ impl ConstraintSet for ZonalConstraints {
     }
 
     fn values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
+        self.elements.check_positions(x)?;
         check_len("constraint values", self.zones.len(), out.len())?;
-        let mut m = vec![0.0; self.tets.len()];
-        self.tets.fill_values(x, &mut m)?;
+        let mut m = vec![0.0; self.elements.len()];
+        self.elements.fill_values(x, Shapes::One, &mut m)?;
         out.par_iter_mut()
             .zip(self.zones.par_iter())
             .for_each(|(c, zone)| *c = zone.iter().map(|&e| m[e]).sum());
@@ -175,18 +200,20 @@ impl ConstraintSet for ZonalConstraints {
     fn jacobian_pattern(&self) -> Vec<(usize, usize)> {
         self.entries
             .iter()
-            .flat_map(|&(z, e)| self.tets.dofs(e).map(|dof| (z, dof)))
+            .flat_map(|&(z, e)| self.elements.dofs(e).map(move |dof| (z, dof)))
             .collect()
     }
 
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
-        self.tets
-            .fill_gradients(x, out, self.entries.len(), 1, 1.0, |b| self.entries[b].1)
+        self.elements.check_positions(x)?;
+        self.elements
+            .fill_gradients(x, Shapes::One, out, self.entries.len(), |b| {
+                self.entries[b].1
+            })
     }
 
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {
-        self.tets.hessian_pattern(self.covered.iter().copied())
+        self.elements.hessian_pattern(self.covered.iter().copied())
     }
 
     fn geometric_stiffness_values(
@@ -195,14 +222,14 @@ impl ConstraintSet for ZonalConstraints {
         multipliers: &[f64],
         out: &mut [f64],
     ) -> Result<(), ConstraintError> {
-        self.tets.check_positions(x)?;
+        self.elements.check_positions(x)?;
         check_len("multipliers", self.zones.len(), multipliers.len())?;
-        self.tets.fill_hessians(
+        self.elements.fill_hessians(
             x,
             out,
             self.covered.len(),
             |b| self.covered[b],
-            |e| self.tet_multiplier(e, multipliers),
+            |e, _| self.element_multiplier(e, multipliers),
         )
     }
 
@@ -211,18 +238,18 @@ impl ConstraintSet for ZonalConstraints {
     }
 
     /// The coarse-scale pressure of Sheen et al. 2021, sec. 8.2: the sum of the multipliers
-    /// of the zones containing the tet (zero outside every zone). Their per-tet pressure adds
-    /// the fine-scale volumetric stress `lambda U'(J)` of the compression penalty; the
+    /// of the zones containing the element (zero outside every zone). Their per-tet pressure
+    /// adds the fine-scale volumetric stress `lambda U'(J)` of the compression penalty; the
     /// penalty belongs to the material model, so the solver adds that term, not this set.
     fn tet_pressures(&self, x: &[Vec3], multipliers: &[f64]) -> Vec<f64> {
-        if self.tets.check_positions(x).is_err() {
+        if self.elements.check_positions(x).is_err() {
             return Vec::new();
         }
         if multipliers.len() != self.zones.len() {
             return Vec::new();
         }
-        (0..self.tets.len())
-            .map(|e| self.tet_multiplier(e, multipliers))
+        (0..self.elements.len())
+            .map(|e| self.element_multiplier(e, multipliers))
             .collect()
     }
 }
@@ -237,7 +264,7 @@ fn no_such_zone(z: usize, zones: usize) -> ConstraintError {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tets::test_meshes::{moved, two_tets};
+    use crate::measured::test_meshes::{moved, two_tets};
 
     #[test]
     fn boundary_of_two_tets_and_its_volume() {

@@ -1,11 +1,15 @@
 //! Throughput of the energy layer: `Psi + P + dP/dF` per material, and tet element
-//! energy + gradient + Hessian (the assembly hot path).
+//! energy + gradient + Hessian (the assembly hot path), 4-node (one point) and 10-node (the
+//! 4-point rule of the elastic terms).
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use isochor_energies::element::{self, RestPoints};
 use isochor_energies::{
     constrained_neo_hookean, quadratic_neo_hookean, standard_neo_hookean, tet, BonetWood,
     DistortionalNeoHookean, FbarNeoHookean, Hyperelastic, Lame, Mooney, StableNeoHookean,
 };
+use isochor_mesh::element::TetQuadrature;
+use isochor_mesh::{ElementMesh, TetMesh};
 use nalgebra::{Matrix3, Vector3};
 use std::hint::black_box;
 use std::time::Duration;
@@ -115,6 +119,35 @@ fn tet_hessians(c: &mut Criterion) {
             })
         },
     );
+    // The same element as a straight 10-node tet with the 4-point rule.
+    let mesh = ElementMesh::quadratic(TetMesh::new(rest.to_vec(), vec![[0, 1, 2, 3]]).unwrap());
+    let geometry = mesh.rest_geometry(TetQuadrature::Degree2).unwrap();
+    let points = RestPoints {
+        weights: geometry.element_weights(0),
+        gradients: geometry.element_gradients(0),
+    };
+    let nodes = mesh.element(0);
+    let x10: Vec<Vec<Vector3<f64>>> = samples()
+        .iter()
+        .map(|f| mesh.nodes().iter().map(|v| f * v).collect())
+        .collect();
+    let (mut g, mut h) = (vec![0.0; 30], vec![0.0; 900]);
+    for (name, m) in [
+        ("standard", &standard as &dyn Hyperelastic),
+        ("constrained", &cnh),
+    ] {
+        group.bench_function(
+            format!("energy+gradient+Hessian, {name} neo-Hookean, tet10 4-point rule"),
+            |b| {
+                b.iter(|| {
+                    for x in &x10 {
+                        let (g, h) = (Some(g.as_mut_slice()), Some(h.as_mut_slice()));
+                        black_box(element::evaluate(m, black_box(x), nodes, points, g, h).unwrap());
+                    }
+                })
+            },
+        );
+    }
     group.finish();
 }
 

@@ -1,12 +1,16 @@
-//! The epidermis surface energy, eq. 16 of Sheen et al. 2021.
+//! The epidermis surface energy, eq. 16 of Sheen et al. 2021, on 3- and 6-node faces by
+//! quadrature; a 3-node face with the one-point rule is the case `n = 3` of the same code.
 
+use crate::element::mirror_lower;
 use crate::parameters::require;
 use crate::penalties::SheenPenalty;
-use crate::triangle::{area_ratio, area_ratio_derivatives, RestTriangle};
+use crate::triangle::{add_area_terms, RestFacePoints, RestTriangle};
 use crate::{Lame, Matrix9, ParameterError, Vector9};
-use nalgebra::Vector3;
+use isochor_mesh::element::TriQuadrature;
+use isochor_mesh::Vec3;
+use nalgebra::{Vector2, Vector3};
 
-/// Energy, gradient and Hessian of one surface triangle.
+/// Energy, gradient and Hessian of one 3-node surface triangle.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TriangleTerms {
     /// `A_0 Psi_e(J~)`.
@@ -69,37 +73,123 @@ impl Epidermis {
         self.lambda_e * self.penalty.u(area_ratio)
     }
 
-    /// `A_0 Psi_e(J~)`.
+    /// `A_0 Psi_e(J~)` of a 3-node triangle.
     pub fn energy(&self, x: &[Vector3<f64>; 3], rest: &RestTriangle) -> f64 {
-        rest.area() * self.energy_density(area_ratio(x, rest))
+        let (areas, gradients) = rest.one_point();
+        self.evaluate(x, &[0, 1, 2], one_point(&areas, &gradients), None, None)
     }
 
-    /// `A_0 lambda_e U'(J~) dJ~/dx`.
+    /// `A_0 lambda_e U'(J~) dJ~/dx` of a 3-node triangle.
     pub fn gradient(&self, x: &[Vector3<f64>; 3], rest: &RestTriangle) -> Vector9 {
-        self.energy_gradient_hessian(x, rest).gradient
+        let (areas, gradients) = rest.one_point();
+        let mut gradient = Vector9::zeros();
+        self.evaluate(
+            x,
+            &[0, 1, 2],
+            one_point(&areas, &gradients),
+            Some(gradient.as_mut_slice()),
+            None,
+        );
+        gradient
     }
 
-    /// `A_0 lambda_e (U''(J~) dJ~/dx dJ~/dx^T + U'(J~) d2J~/dx2)`.
+    /// `A_0 lambda_e (U''(J~) dJ~/dx dJ~/dx^T + U'(J~) d2J~/dx2)` of a 3-node triangle.
     pub fn hessian(&self, x: &[Vector3<f64>; 3], rest: &RestTriangle) -> Matrix9 {
         self.energy_gradient_hessian(x, rest).hessian
     }
 
-    /// Energy, gradient and Hessian together.
+    /// Energy, gradient and Hessian of a 3-node triangle together.
     pub fn energy_gradient_hessian(
         &self,
         x: &[Vector3<f64>; 3],
         rest: &RestTriangle,
     ) -> TriangleTerms {
-        let d = area_ratio_derivatives(x, rest);
-        let s = rest.area() * self.lambda_e;
-        let (u1, u2) = (self.penalty.du(d.value), self.penalty.ddu(d.value));
-        let mut hessian = d.hessian * (s * u1);
-        hessian.ger(s * u2, &d.gradient, &d.gradient, 1.0);
+        let (areas, gradients) = rest.one_point();
+        let mut gradient = Vector9::zeros();
+        let mut hessian = Matrix9::zeros();
+        let energy = self.evaluate(
+            x,
+            &[0, 1, 2],
+            one_point(&areas, &gradients),
+            Some(gradient.as_mut_slice()),
+            Some(hessian.as_mut_slice()),
+        );
         TriangleTerms {
-            energy: s * self.penalty.u(d.value),
-            gradient: d.gradient * (s * u1),
+            energy,
+            gradient,
             hessian,
         }
+    }
+
+    /// The epidermis energy of a face of `n` nodes (3 or 6; indices `nodes` into `x`) by
+    /// quadrature, `sum_q w_q S_q Psi_e(s_q / S_q)` with `s_q` the deformed area element
+    /// ([`crate::triangle::area_element`]), and, when asked for, its gradient (`3n`) and
+    /// Hessian (`3n x 3n`, column-major, exactly symmetric) written over `gradient` and
+    /// `hessian`:
+    /// `sum_q w_q lambda_e (U'(J~_q) ds_q/dx)` and
+    /// `sum_q w_q lambda_e (U''(J~_q) ds_q/dx ds_q/dx^T / S_q + U'(J~_q) d2s_q/dx2)`.
+    ///
+    /// # Panics
+    ///
+    /// If `rest` does not hold one area and `n` gradients per weight, or an output does not
+    /// have `3n` or `9n^2` entries.
+    pub fn evaluate(
+        &self,
+        x: &[Vec3],
+        nodes: &[usize],
+        rest: RestFacePoints<'_>,
+        mut gradient: Option<&mut [f64]>,
+        mut hessian: Option<&mut [f64]>,
+    ) -> f64 {
+        let n = nodes.len();
+        assert!(
+            n > 0
+                && rest.areas.len() == rest.weights.len()
+                && rest.gradients.len() == n * rest.weights.len(),
+            "{} areas and {} shape gradients for {} points of a {n}-node face",
+            rest.areas.len(),
+            rest.gradients.len(),
+            rest.weights.len()
+        );
+        if let Some(g) = gradient.as_deref_mut() {
+            assert_eq!(g.len(), 3 * n, "gradient length");
+            g.fill(0.0);
+        }
+        if let Some(h) = hessian.as_deref_mut() {
+            assert_eq!(h.len(), 9 * n * n, "Hessian length");
+            h.fill(0.0);
+        }
+        let mut energy = 0.0;
+        let points = rest.weights.iter().zip(rest.areas);
+        for ((&w, &area), grads) in points.zip(rest.gradients.chunks_exact(n)) {
+            let coefficients = |s: f64| {
+                let j = s / area;
+                let c = w * self.lambda_e;
+                (c * self.penalty.du(j), c * self.penalty.ddu(j) / area)
+            };
+            let s = add_area_terms(
+                x,
+                nodes,
+                grads,
+                coefficients,
+                gradient.as_deref_mut(),
+                hessian.as_deref_mut(),
+            );
+            energy += w * area * self.energy_density(s / area);
+        }
+        if let Some(h) = hessian {
+            mirror_lower(h, 3 * n);
+        }
+        energy
+    }
+}
+
+/// The one-point rule data of a 3-node triangle as [`RestFacePoints`].
+fn one_point<'a>(areas: &'a [f64; 1], gradients: &'a [Vector2<f64>; 3]) -> RestFacePoints<'a> {
+    RestFacePoints {
+        weights: TriQuadrature::Degree1.weights(),
+        areas,
+        gradients,
     }
 }
 

@@ -8,7 +8,8 @@
 //! Conventions used throughout:
 //! - 3x3 matrices are flattened column-major (nalgebra's storage order): `vec(F)[3*j + i] = F[(i, j)]`,
 //!   so `dP/dF` is the 9x9 matrix `d vec(P) / d vec(F)`.
-//! - Element DOF vectors are vertex-major: `[x0.x, x0.y, x0.z, x1.x, ...]`.
+//! - Element DOF vectors are node-major: `[x0.x, x0.y, x0.z, x1.x, ...]`; element Hessians are
+//!   column-major (the storage of nalgebra's fixed matrices).
 //!
 //! Contents:
 //! - densities ([`Hyperelastic`]): [`Mooney`] (eq. 29 of Francu et al. 2021),
@@ -18,11 +19,14 @@
 //!   (eq. 13-15 of Sheen et al. 2021);
 //! - [`Composed`] `Psi_dev + lambda U(J)`: [`standard_neo_hookean`], [`quadratic_neo_hookean`],
 //!   [`constrained_neo_hookean`];
-//! - kernels: [`tet`] (`F`, `dF/dx`, element energy/gradient/Hessian), [`triangle`] (`F~`, `J~`),
-//!   [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
+//! - kernels: [`element`] (the quadrature element kernel: energy `sum_q w_q Psi(F_q)`, gradient
+//!   and Hessian of an element of any number of nodes, 4- and 10-node tets), [`tet`] (its
+//!   one-point 4-node case with fixed-size types), [`triangle`] (the area element and `J~` of
+//!   3- and 6-node faces), [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
 //! - [`kinematics`]: `vec`, `cof F = dJ/dF`, `d2J/dF2`, shared by every `J`-based term.
 
 mod composed;
+pub mod element;
 mod epidermis;
 mod error;
 pub mod kinematics;

@@ -1,11 +1,20 @@
-//! Surface triangle kinematics: the 3x2 reduced deformation gradient `F~` and the area ratio
-//! `J~ = sqrt(det(F~^T F~))` (eq. 16 of Sheen et al. 2021), with its gradient and Hessian
-//! with respect to the three vertex positions (vertex-major, 9 DOFs).
+//! Surface triangle kernels for 3- and 6-node faces: the area element
+//! `s = |dx/dxi x dx/deta|` at a point of the reference triangle and the area ratio
+//! `J~ = s / S`, `S` its rest value (eq. 16 of Sheen et al. 2021: `J~ = sqrt(det(F~^T F~))`),
+//! with derivatives with respect to the node positions (node-major, `3n` DOFs).
+//!
+//! The tangents `t_i = sum_a x_a dN_a/dxi_i` are linear in `x` with two nonzeros per column
+//! (`dt_i / dx_{a,k} = (dN_a/dxi)_i e_k`), so the kernel works in the six tangent coordinates
+//! and pulls back node pair by node pair. A 3-node triangle with the one-point rule is the case
+//! `n = 3` of the same code ([`RestTriangle`]).
 
 use crate::{Matrix9, Vector9};
-use nalgebra::{Matrix2, Matrix3, Matrix3x2, SMatrix, Vector3};
+use isochor_mesh::element::{deformation_gradient, TriElement, TriQuadrature};
+use isochor_mesh::Vec3;
+use nalgebra::{Matrix2, Matrix3, Matrix3x2, SMatrix, Vector2, Vector3};
 
-/// Rest data of a triangle: `D_m^-1` in an orthonormal frame of its plane, and its area `A_0`.
+/// Rest data of a 3-node triangle: `D_m^-1` in an orthonormal frame of its plane, and its area
+/// `A_0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RestTriangle {
     dm_inv: Matrix2<f64>,
@@ -39,16 +48,46 @@ impl RestTriangle {
     pub fn dm_inv(&self) -> &Matrix2<f64> {
         &self.dm_inv
     }
+
+    /// The one-point rule on this triangle: the rest area element `S = 2 A_0` and the
+    /// (constant) reference gradients of [`TriElement::Tri3`], for [`RestFacePoints`] with the
+    /// weights of [`TriQuadrature::Degree1`].
+    pub(crate) fn one_point(&self) -> ([f64; 1], [Vector2<f64>; 3]) {
+        let mut gradients = [Vector2::zeros(); 3];
+        TriElement::Tri3.shape_gradients(&TriQuadrature::Degree1.points()[0], &mut gradients);
+        ([2.0 * self.area], gradients)
+    }
 }
 
-/// Reduced deformation gradient `F~ = [x1-x0, x2-x0] D_m^-1` (3x2).
+/// The rest data of one face at the points of a quadrature rule on the reference triangle.
+#[derive(Debug, Clone, Copy)]
+pub struct RestFacePoints<'a> {
+    /// The rule's weights `w_q` (adding up to 1/2, the reference area).
+    pub weights: &'a [f64],
+    /// The rest area element `S_q = |dX/dxi x dX/deta|(xi_q)` of every point (see
+    /// [`area_element`]), so that the rest area is `sum_q w_q S_q`.
+    pub areas: &'a [f64],
+    /// The reference shape gradients `dN_a/dxi`: `n` per point, point-major.
+    pub gradients: &'a [Vector2<f64>],
+}
+
+/// Reduced deformation gradient `F~ = [x1-x0, x2-x0] D_m^-1` (3x2) of a 3-node triangle.
 pub fn reduced_deformation_gradient(x: &[Vector3<f64>; 3], rest: &RestTriangle) -> Matrix3x2<f64> {
     Matrix3x2::from_columns(&[x[1] - x[0], x[2] - x[0]]) * rest.dm_inv
 }
 
-/// Area ratio `J~ = sqrt(det(F~^T F~)) = |(x1-x0) x (x2-x0)| / (2 A_0)`; always `>= 0`.
+/// The area element `s = |dx/dxi x dx/deta|` of the face with nodes `nodes` (indices into `x`)
+/// at a point where the reference shape gradients are `gradients`: `s dxi deta` is the area
+/// of the deformed face element. At rest positions it is the `S_q` of [`RestFacePoints`].
+pub fn area_element(x: &[Vec3], nodes: &[usize], gradients: &[Vector2<f64>]) -> f64 {
+    let t = deformation_gradient(x, nodes, gradients);
+    t.column(0).cross(&t.column(1)).norm()
+}
+
+/// Area ratio `J~ = |(x1-x0) x (x2-x0)| / (2 A_0)` of a 3-node triangle; always `>= 0`.
 pub fn area_ratio(x: &[Vector3<f64>; 3], rest: &RestTriangle) -> f64 {
-    (x[1] - x[0]).cross(&(x[2] - x[0])).norm() / (2.0 * rest.area)
+    let (areas, gradients) = rest.one_point();
+    area_element(x, &[0, 1, 2], &gradients) / areas[0]
 }
 
 /// `J~` with its gradient and Hessian with respect to the 9 vertex coordinates.
@@ -58,60 +97,104 @@ pub struct AreaRatio {
     pub value: f64,
     /// `dJ~/dx`.
     pub gradient: Vector9,
-    /// `d2J~/dx2` (symmetric).
+    /// `d2J~/dx2` (exactly symmetric).
     pub hessian: Matrix9,
 }
 
-/// `J~` and its derivatives. With `e1 = x1-x0`, `e2 = x2-x0`, `n = e1 x e2`, `s = |n|`:
-/// `ds/de1 = e2 x n^`, `ds/de2 = n^ x e1`, and
-/// `d2s/de2 = N^T (I - n^ n^T) N / s + [[0, -[n^]x], [[n^]x, 0]]` with `N = [-[e2]x, [e1]x]`.
-/// Where the deformed triangle is degenerate (`s = 0`), `J~ = 0` is not differentiable and the
+/// `J~ = s / (2 A_0)` of a 3-node triangle and its derivatives, by [`add_area_terms`]. Where the
+/// deformed triangle is degenerate (`s = 0`), `J~ = 0` is not differentiable and the
 /// derivatives returned are zero.
 pub fn area_ratio_derivatives(x: &[Vector3<f64>; 3], rest: &RestTriangle) -> AreaRatio {
-    let (e1, e2) = (x[1] - x[0], x[2] - x[0]);
-    let n = e1.cross(&e2);
-    let s = n.norm();
-    let scale = 1.0 / (2.0 * rest.area);
-    if s == 0.0 {
-        return AreaRatio {
-            value: 0.0,
-            gradient: Vector9::zeros(),
-            hessian: Matrix9::zeros(),
-        };
-    }
-    let nh = n / s;
-    let mut ge = SMatrix::<f64, 6, 1>::zeros();
-    ge.fixed_rows_mut::<3>(0).copy_from(&e2.cross(&nh));
-    ge.fixed_rows_mut::<3>(3).copy_from(&nh.cross(&e1));
-
-    let mut dn = SMatrix::<f64, 3, 6>::zeros();
-    dn.fixed_view_mut::<3, 3>(0, 0)
-        .copy_from(&(-e2.cross_matrix()));
-    dn.fixed_view_mut::<3, 3>(0, 3)
-        .copy_from(&e1.cross_matrix());
-    let proj = Matrix3::identity() - nh * nh.transpose();
-    let mut he = dn.transpose() * proj * dn / s;
-    let nx = nh.cross_matrix();
-    let mut off = he.fixed_view_mut::<3, 3>(0, 3);
-    off -= nx;
-    let mut off = he.fixed_view_mut::<3, 3>(3, 0);
-    off += nx;
-
-    // e = A x with A = [[-I, I, 0], [-I, 0, I]].
-    let mut a = SMatrix::<f64, 6, 9>::zeros();
-    for k in 0..3 {
-        a[(k, k)] = -1.0;
-        a[(k, 3 + k)] = 1.0;
-        a[(3 + k, k)] = -1.0;
-        a[(3 + k, 6 + k)] = 1.0;
-    }
+    let (areas, gradients) = rest.one_point();
+    let mut gradient = Vector9::zeros();
+    let mut hessian = Matrix9::zeros();
+    let s = add_area_terms(
+        x,
+        &[0, 1, 2],
+        &gradients,
+        |_| (1.0 / areas[0], 0.0),
+        Some(gradient.as_mut_slice()),
+        Some(hessian.as_mut_slice()),
+    );
+    crate::element::mirror_lower(hessian.as_mut_slice(), 9);
     AreaRatio {
-        value: s * scale,
-        gradient: a.transpose() * ge * scale,
-        hessian: a.transpose() * he * a * scale,
+        value: s / areas[0],
+        gradient,
+        hessian,
     }
 }
 
+/// The kernel of every triangle term: the area element `s` at one point of a face (see
+/// [`area_element`]) and, with `(c1, c2) = coefficients(s)`, adds `c1 ds/dx` to `gradient`
+/// (`3n`) and `c2 ds/dx ds/dx^T + c1 d2s/dx2` to the lower triangle of the column-major
+/// `hessian` (`3n x 3n`). Nothing is added where `s = 0` (not differentiable).
+///
+/// In the tangents `t1, t2`, with `n = t1 x t2` and `n^ = n / s`: `ds/dt1 = t2 x n^`,
+/// `ds/dt2 = n^ x t1` and `d2s/dt2 = N^T (I - n^ n^T) N / s + [[0, -[n^]x], [[n^]x, 0]]`
+/// with `N = [-[t2]x, [t1]x]`; then `ds/dx_a = sum_i (dN_a/dxi)_i ds/dt_i` and block `(a, b)`
+/// of `d2s/dx2` is `sum_{i,j} (dN_a/dxi)_i (dN_b/dxi)_j d2s/dt_i dt_j`.
+pub(crate) fn add_area_terms(
+    x: &[Vec3],
+    nodes: &[usize],
+    gradients: &[Vector2<f64>],
+    coefficients: impl FnOnce(f64) -> (f64, f64),
+    gradient: Option<&mut [f64]>,
+    hessian: Option<&mut [f64]>,
+) -> f64 {
+    let tangents = deformation_gradient(x, nodes, gradients);
+    let (t1, t2): (Vec3, Vec3) = (tangents.column(0).into(), tangents.column(1).into());
+    let normal = t1.cross(&t2);
+    let s = normal.norm();
+    if s == 0.0 || (gradient.is_none() && hessian.is_none()) {
+        return s;
+    }
+    let (c1, c2) = coefficients(s);
+    let nh = normal / s;
+    let ds = [t2.cross(&nh), nh.cross(&t1)];
+    let node_ds = |g: &Vector2<f64>| ds[0] * g.x + ds[1] * g.y;
+    if let Some(out) = gradient {
+        for (o, g) in out.chunks_exact_mut(3).zip(gradients) {
+            let d = node_ds(g) * c1;
+            o.iter_mut().zip(d.iter()).for_each(|(o, d)| *o += d);
+        }
+    }
+    if let Some(h) = hessian {
+        let mut dn = SMatrix::<f64, 3, 6>::zeros();
+        dn.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&(-t2.cross_matrix()));
+        dn.fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&t1.cross_matrix());
+        let projection = Matrix3::identity() - nh * nh.transpose();
+        let mut he = dn.transpose() * projection * dn / s;
+        let nx = nh.cross_matrix();
+        let mut block = he.fixed_view_mut::<3, 3>(0, 3);
+        block -= nx;
+        let mut block = he.fixed_view_mut::<3, 3>(3, 0);
+        block += nx;
+        let dim = 3 * nodes.len();
+        for (b, gb) in gradients.iter().enumerate() {
+            let dsb = node_ds(gb) * c2;
+            for (a, ga) in gradients.iter().enumerate().skip(b) {
+                let mut hab = node_ds(ga) * dsb.transpose();
+                for i in 0..2 {
+                    for j in 0..2 {
+                        hab += he.fixed_view::<3, 3>(3 * i, 3 * j) * (c1 * ga[i] * gb[j]);
+                    }
+                }
+                for k in 0..3 {
+                    let col = 3 * b + k;
+                    for i in 0..3 {
+                        let row = 3 * a + i;
+                        if row >= col {
+                            h[col * dim + row] += hab[(i, k)];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    s
+}
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -27,6 +27,18 @@ pub enum MeshError {
     Inverted { tet: usize, volume: f64 },
     #[error("vertex {vertex} has a non-finite coordinate {coords:?}")]
     NonFiniteVertex { vertex: usize, coords: [f64; 3] },
+    #[error("element {element}: det(dX/dxi) = {determinant:e} at reference point {point:?} is not positive: the (curved) element is folded or inverted")]
+    FoldedElement {
+        element: usize,
+        point: [f64; 3],
+        determinant: f64,
+    },
+    #[error("element {element}: node {node} {reason}")]
+    MidEdgeNode {
+        element: usize,
+        node: usize,
+        reason: String,
+    },
     #[error("the mesh has no tetrahedra")]
     Empty,
     #[error("tet index {tet} is out of range (the mesh has {tets} tets)")]

@@ -1,12 +1,14 @@
 //! # isochor-mesh
 //!
-//! Geometry and topology of linear tetrahedral meshes, with no physics: the [`TetMesh`] and
+//! Geometry and topology of tetrahedral meshes, with no physics: the linear [`TetMesh`] and
 //! its rest data, the boundary surface, adjacency and k-rings, named selections, volume
-//! zones (Sheen et al. 2021, sec. 4 and 6), mesh generators, and file I/O (VTU/PVD for
-//! ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
+//! zones (Sheen et al. 2021, sec. 4 and 6), the element layer of 4- and 10-node tets
+//! ([`element`]: reference elements, quadrature, isoparametric rest geometry, [`ElementMesh`]),
+//! mesh generators, and file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
 
 mod adjacency;
 mod closest;
+pub mod element;
 mod error;
 pub mod generate;
 pub mod io;
@@ -17,6 +19,7 @@ mod zones;
 
 pub use adjacency::Adjacency;
 pub use closest::{closest_point_on_triangle, TriangleBvh};
+pub use element::{ElementMesh, ElementSurface};
 pub use error::MeshError;
 pub use selection::{FaceSelection, Region, VertexSelection};
 pub use surface::{check_closed_manifold, BoundarySurface, TET_FACES};

@@ -20,6 +20,7 @@ pub const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 
 pub struct BoundarySurface {
     triangles: Vec<[usize; 3]>,
     owners: Vec<usize>,
+    owner_faces: Vec<usize>,
     vertices: Vec<usize>,
     rest_areas: Vec<f64>,
 }
@@ -48,25 +49,28 @@ impl BoundarySurface {
     }
 
     fn build(mesh: &TetMesh, tets: impl Iterator<Item = usize>) -> Result<Self, MeshError> {
-        // (sorted vertex triple, owning tet, oriented triangle) for every face of every tet.
-        let mut faces: Vec<([usize; 3], usize, [usize; 3])> = Vec::new();
+        // (sorted vertex triple, owning tet, oriented triangle, local face) for every face of
+        // every tet.
+        let mut faces: Vec<([usize; 3], usize, [usize; 3], usize)> = Vec::new();
         for e in tets {
             let t = mesh.tets()[e];
-            for local in TET_FACES {
+            for (f, local) in TET_FACES.into_iter().enumerate() {
                 let tri = local.map(|a| t[a]);
                 let mut key = tri;
                 key.sort_unstable();
-                faces.push((key, e, tri));
+                faces.push((key, e, tri, f));
             }
         }
         faces.sort_unstable_by_key(|f| (f.0, f.1));
         let mut triangles = Vec::new();
         let mut owners = Vec::new();
+        let mut owner_faces = Vec::new();
         for run in faces.chunk_by(|a, b| a.0 == b.0) {
             match run.len() {
                 1 => {
                     triangles.push(run[0].2);
                     owners.push(run[0].1);
+                    owner_faces.push(run[0].3);
                 }
                 2 => {}
                 count => {
@@ -88,6 +92,7 @@ impl BoundarySurface {
         Ok(BoundarySurface {
             triangles,
             owners,
+            owner_faces,
             vertices,
             rest_areas,
         })
@@ -101,6 +106,13 @@ impl BoundarySurface {
     /// The tet that owns each triangle.
     pub fn owner_tets(&self) -> &[usize] {
         &self.owners
+    }
+
+    /// The local face (`0..4`, the face of [`TET_FACES`] opposite that corner) of each
+    /// triangle in its owner tet: triangle `i` is `TET_FACES[owner_faces()[i]]` of tet
+    /// `owner_tets()[i]`.
+    pub fn owner_faces(&self) -> &[usize] {
+        &self.owner_faces
     }
 
     /// Sorted, duplicate-free indices of the vertices on the surface.

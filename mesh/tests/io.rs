@@ -1,11 +1,13 @@
 //! File I/O: VTU round trip, PVD, the sample Gmsh files, TetGen, and malformed input.
 
-use isochor_mesh::generate::box_grid;
+use isochor_mesh::element::TetElement;
+use isochor_mesh::generate::{box_grid, cylinder, cylinder_surface, tube_surface};
 use isochor_mesh::io::{
-    read_gmsh, read_mesh, read_tetgen, read_vtu, read_vtu_file, write_pvd, write_vtu, Field,
-    FieldValues,
+    read_gmsh, read_gmsh_elements, read_mesh, read_mesh_elements, read_tetgen, read_vtu,
+    read_vtu_elements, read_vtu_file, write_pvd, write_vtu, write_vtu_elements, Field, FieldValues,
 };
-use isochor_mesh::{MeshError, Vec3};
+use isochor_mesh::{ElementMesh, MeshError, Vec3};
+use std::f64::consts::PI;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -81,7 +83,7 @@ fn vtu_round_trip_is_exact() {
     .unwrap();
     let file = read_vtu_file(&path).unwrap();
     assert_eq!(file.points, mesh.positions());
-    assert_eq!(file.tets, mesh.tets());
+    assert_eq!(file.cells, mesh.tets().as_flattened());
     assert_eq!(file.point_data, point_data);
     assert_eq!(file.cell_data.len(), 2);
     assert_eq!(file.cell_data[1], cell_data[1]);
@@ -291,5 +293,142 @@ fn tetgen_pair_and_dispatch() {
         read_mesh(dir.join("box.stl")),
         Err(MeshError::Format { .. })
     ));
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn gmsh_ten_node_sample_reads_with_its_documented_counts() {
+    let path = data("tube-tet10-v41.msh");
+    let mesh = read_gmsh_elements(&path).unwrap();
+    assert_eq!(mesh.kind(), TetElement::Tet10);
+    assert_eq!((mesh.num_nodes(), mesh.num_elements()), (4555, 2257));
+    assert_eq!(mesh.corners().reoriented(), 0);
+    let surface = mesh.boundary().unwrap();
+    surface.corners().check_closed().unwrap();
+    // Physical groups inner 502 + outer 784 + bottom 111 + top 111 faces.
+    assert_eq!(surface.len(), 502 + 784 + 111 + 111);
+    let x = mesh.nodes();
+    let count = |on: &dyn Fn(&Vec3) -> bool| {
+        (0..surface.len())
+            .filter(|&f| surface.face(f).iter().all(|&i| on(&x[i])))
+            .count()
+    };
+    let at_radius = |r: f64| move |p: &Vec3| (p.xy().norm() - r).abs() < 1e-9 * r;
+    assert_eq!(count(&at_radius(0.02)), 502);
+    assert_eq!(count(&at_radius(0.03)), 784);
+    assert_eq!(count(&|p: &Vec3| p.z.abs() < 1e-12), 111);
+    assert_eq!(count(&|p: &Vec3| (p.z - 0.06).abs() < 1e-12), 111);
+    // Radii 0.02 and 0.03, z from 0 to 0.06: the curved elements hold the true volume
+    // far better than their flat corners.
+    let (ri, ro, h) = (0.02, 0.03, 0.06);
+    let exact = PI * (ro * ro - ri * ri) * h;
+    let curved = (mesh.rest_volume() - exact).abs() / exact;
+    let flat = (mesh.corners().rest_volume() - exact).abs() / exact;
+    let enclosed = surface.enclosed_volume(mesh.nodes());
+    eprintln!(
+        "tube-tet10: volume {:.6e} (exact {exact:.6e}): relative error {curved:.2e} curved, \
+         {flat:.2e} for the corner mesh; 6-node boundary encloses {enclosed:.6e}",
+        mesh.rest_volume()
+    );
+    assert!(curved < 1e-4 && flat > 10.0 * curved, "{curved} {flat}");
+    assert!((enclosed - mesh.rest_volume()).abs() < 1e-12 * exact);
+    // Interior mid-edge nodes sit at their edge's midpoint; boundary ones on the curved walls
+    // are where our radial projection puts them, so Gmsh's edge order is ours.
+    let on_boundary: std::collections::HashSet<usize> = (0..surface.len())
+        .flat_map(|f| surface.face(f)[3..].to_vec())
+        .collect();
+    let project = tube_surface(ri, ro);
+    let nv = mesh.num_vertices();
+    let (mut interior, mut boundary, mut projected): (f64, f64, f64) = (0.0, 0.0, 0.0);
+    for (i, &[a, b]) in mesh.mid_edges().iter().enumerate() {
+        let length = (x[b] - x[a]).norm();
+        let offset = (x[nv + i] - 0.5 * (x[a] + x[b])).norm() / length;
+        if on_boundary.contains(&(nv + i)) {
+            boundary = boundary.max(offset);
+            if let Some(p) = project(&x[a], &x[b]) {
+                projected = projected.max((p - x[nv + i]).norm() / length);
+            }
+        } else {
+            interior = interior.max(offset);
+        }
+    }
+    eprintln!(
+        "tube-tet10: max mid-edge offset from the straight midpoint / edge length: interior \
+         {interior:.1e}, boundary {boundary:.1e}; distance from our wall projection {projected:.1e}"
+    );
+    assert!(interior < 1e-12, "{interior}");
+    assert!(boundary > 1e-3 && boundary < 0.1, "{boundary}");
+    assert!(projected < 1e-9, "{projected}");
+    // The linear readers refuse the file at its first tet, naming the quadratic reader.
+    let (line, m) = parse_error(read_gmsh(&path), &path);
+    let text = fs::read_to_string(&path).unwrap();
+    let first_tet = text
+        .lines()
+        .position(|l| l.starts_with("3 ") && l.split_whitespace().nth(2) == Some("11"))
+        .unwrap();
+    assert_eq!(line, first_tet + 2);
+    assert!(m.contains("read_gmsh_elements"), "{m}");
+    assert!(read_mesh(&path).is_err());
+    assert_eq!(read_mesh_elements(&path).unwrap().num_nodes(), 4555);
+}
+
+#[test]
+fn vtu_round_trip_of_curved_ten_node_tets() {
+    let dir = scratch("vtu-tet10");
+    let r = 0.02;
+    let mesh =
+        ElementMesh::quadratic_on_surface(cylinder(r, 0.05, 2).unwrap(), cylinder_surface(r))
+            .unwrap();
+    let height: Vec<f64> = mesh.nodes().iter().map(|p| p.z).collect();
+    let point_data = [Field::scalar("z", height)];
+    let cell_data = [Field::int(
+        "element",
+        (0..mesh.num_elements()).map(|e| e as i32).collect(),
+    )];
+    let path = dir.join("curved.vtu");
+    write_vtu_elements(
+        &path,
+        mesh.nodes(),
+        mesh.kind(),
+        mesh.connectivity(),
+        &point_data,
+        &cell_data,
+    )
+    .unwrap();
+    let file = read_vtu_file(&path).unwrap();
+    assert_eq!(file.element, TetElement::Tet10);
+    assert_eq!(file.points, mesh.nodes());
+    assert_eq!(file.cells, mesh.connectivity());
+    assert_eq!(file.point_data, point_data);
+    assert_eq!(file.cell_data, cell_data);
+    // VTK's order: the first cell's nodes 8 and 9 are our 9 and 8.
+    let text = fs::read_to_string(&path).unwrap();
+    let e = mesh.element(0);
+    let first = [e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[9], e[8]].map(|i| i.to_string());
+    assert!(text.contains(&first.join(" ")));
+    assert!(text.contains("\n24\n"));
+    let back = read_vtu_elements(&path).unwrap();
+    assert_eq!(back.nodes(), mesh.nodes());
+    assert_eq!(back.connectivity(), mesh.connectivity());
+    assert_eq!(back.rest_volume(), mesh.rest_volume());
+    // The linear reader refuses quadratic cells, naming the cell and the reader to use.
+    let (_, m) = parse_error(read_vtu(&path), &path);
+    assert!(
+        m.contains("cell 0") && m.contains("read_vtu_elements"),
+        "{m}"
+    );
+    // Linear files read as 4-node element meshes.
+    let linear = dir.join("linear.vtu");
+    write_vtu(
+        &linear,
+        mesh.corners().positions(),
+        mesh.corners().tets(),
+        &[],
+        &[],
+    )
+    .unwrap();
+    let back = read_mesh_elements(&linear).unwrap();
+    assert_eq!(back.kind(), TetElement::Tet4);
+    assert_eq!(back.connectivity(), mesh.corners().tets().as_flattened());
     fs::remove_dir_all(&dir).unwrap();
 }

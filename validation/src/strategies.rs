@@ -1,4 +1,5 @@
-//! Proptest strategies shared by the test suites: deformation gradients and perturbed meshes.
+//! Proptest strategies shared by the test suites: deformation gradients and perturbed meshes,
+//! of 4-node tets and of straight or curved 10-node tets.
 
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
@@ -179,4 +180,154 @@ pub fn deformed_box(
     proptest::strategy::Just(mesh)
         .prop_filter_map("box cells must be valid", |mesh| mesh)
         .prop_flat_map(move |mesh| deform(mesh, amplitude, j_min))
+}
+
+/// A mesh of 4- or 10-node tets and positions of all its nodes.
+#[derive(Debug, Clone)]
+pub struct DeformedElements {
+    /// The rest mesh.
+    pub mesh: isochor_mesh::ElementMesh,
+    /// Deformed positions, one per node.
+    pub x: Vec<isochor_mesh::Vec3>,
+}
+
+/// The volume ratios `det F` at the points of every quadrature rule in every element of
+/// `mesh` with node positions `x`.
+pub fn volume_ratios(mesh: &isochor_mesh::ElementMesh, x: &[isochor_mesh::Vec3]) -> Vec<f64> {
+    use isochor_mesh::element::{deformation_gradient, TetQuadrature};
+    let mut ratios = Vec::new();
+    for rule in TetQuadrature::ALL {
+        let geometry = mesh.rest_geometry(rule).expect("rest geometry");
+        for e in 0..mesh.num_elements() {
+            for q in 0..rule.num_points() {
+                let f = deformation_gradient(x, mesh.element(e), geometry.gradients(e, q));
+                ratios.push(f.determinant());
+            }
+        }
+    }
+    ratios
+}
+
+/// `mesh` with its mid-edge nodes moved by `offsets[i] * scale` (node `num_vertices + i`),
+/// rebuilt through [`isochor_mesh::ElementMesh::from_nodes`] (which rejects folded elements);
+/// `None` unless `det(dX/dxi)` stays within a factor 4 in every element at the points of the
+/// degree-5 rule (a curved element, but not a nearly folded one).
+fn bend(
+    mesh: &isochor_mesh::ElementMesh,
+    offsets: &[isochor_mesh::Vec3],
+    scale: f64,
+) -> Option<isochor_mesh::ElementMesh> {
+    use isochor_mesh::element::TetQuadrature;
+    let nv = mesh.num_vertices();
+    let mut nodes = mesh.nodes().to_vec();
+    for (node, d) in nodes[nv..].iter_mut().zip(offsets) {
+        *node += d * scale;
+    }
+    let bent =
+        isochor_mesh::ElementMesh::from_nodes(mesh.kind(), nodes, mesh.connectivity().to_vec())
+            .ok()?;
+    let rule = TetQuadrature::Degree5;
+    let geometry = bent.rest_geometry(rule).ok()?;
+    (0..bent.num_elements())
+        .all(|e| {
+            let dets = geometry
+                .element_weights(e)
+                .iter()
+                .zip(rule.weights())
+                .map(|(w, r)| w / r);
+            let (lo, hi) = dets.fold((f64::INFINITY, 0.0f64), |(lo, hi), d| {
+                (lo.min(d), hi.max(d))
+            });
+            lo >= 0.25 * hi
+        })
+        .then_some(bent)
+}
+
+/// A random 10-node tet: the corners of a [`rest_tet`] and its mid-edge nodes, at the edge
+/// midpoints moved by up to `curvature` times the longest edge per coordinate (`0` for a
+/// straight element), kept when it is well shaped (see the filter of [`quadratic`]).
+pub fn rest_tet10(curvature: f64) -> impl Strategy<Value = isochor_mesh::ElementMesh> {
+    (rest_tet(), proptest::array::uniform18(-1.0..1.0f64)).prop_filter_map(
+        "curved element must stay well shaped",
+        move |(corners, d)| {
+            let mesh = isochor_mesh::TetMesh::new(corners.to_vec(), vec![[0, 1, 2, 3]]).ok()?;
+            let offsets: Vec<Vector3<f64>> =
+                d.chunks_exact(3).map(Vector3::from_column_slice).collect();
+            let straight = isochor_mesh::ElementMesh::quadratic(mesh);
+            bend(&straight, &offsets, curvature * max_edge(&corners))
+        },
+    )
+}
+
+/// Positions `F_0 X + noise` of the nodes of `mesh` (noise up to `amplitude` times the
+/// deformed size `|det F_0|^(1/3) l` per coordinate, `l` the longest edge of an element's
+/// corners, independently per node, so the deformation is not affine on 10-node tets), kept
+/// when every volume ratio of [`volume_ratios`] passes `accept`.
+pub fn deform_nodes(
+    mesh: isochor_mesh::ElementMesh,
+    f0: impl Strategy<Value = Matrix3<f64>>,
+    amplitude: f64,
+    accept: fn(f64) -> bool,
+) -> impl Strategy<Value = DeformedElements> {
+    let l = longest_edge(mesh.corners());
+    let n = mesh.num_nodes();
+    (f0, displacements(n, 1.0)).prop_filter_map("a volume ratio is out of range", move |(f0, u)| {
+        let x: Vec<_> = mesh
+            .nodes()
+            .iter()
+            .zip(&u)
+            .map(|(p, d)| f0 * p + d * (amplitude * l * f0.determinant().abs().cbrt()))
+            .collect();
+        volume_ratios(&mesh, &x)
+            .into_iter()
+            .all(accept)
+            .then(|| DeformedElements {
+                mesh: mesh.clone(),
+                x,
+            })
+    })
+}
+
+/// The meshes of `deformed` promoted to 10-node tets: rest mid-edge nodes at the edge
+/// midpoints moved by up to `curvature` times the longest edge per coordinate (`0` for straight
+/// edges), deformed mid-edge nodes at the midpoints of the deformed corners moved by up to
+/// `amplitude` times the longest edge; kept when the rest elements are well shaped
+/// (`det(dX/dxi)` within a factor 4 over each element) and every volume ratio is at least
+/// `j_min`.
+pub fn quadratic(
+    deformed: impl Strategy<Value = Deformed>,
+    curvature: f64,
+    amplitude: f64,
+    j_min: f64,
+) -> impl Strategy<Value = DeformedElements> {
+    deformed.prop_flat_map(move |d| {
+        let straight = isochor_mesh::ElementMesh::quadratic(d.mesh.clone());
+        let mids = straight.num_nodes() - straight.num_vertices();
+        let l = longest_edge(straight.corners());
+        (displacements(mids, 1.0), displacements(mids, 1.0)).prop_filter_map(
+            "promoted mesh must be valid",
+            move |(bends, moves)| {
+                let mesh = bend(&straight, &bends, curvature * l)?;
+                let mut x = d.x.clone();
+                x.extend(
+                    mesh.mid_edges()
+                        .iter()
+                        .zip(&moves)
+                        .map(|(&[a, b], m)| 0.5 * (d.x[a] + d.x[b]) + m * (amplitude * l)),
+                );
+                volume_ratios(&mesh, &x)
+                    .iter()
+                    .all(|&j| j >= j_min)
+                    .then_some(DeformedElements { mesh, x })
+            },
+        )
+    })
+}
+
+/// The longest tet edge of `mesh`.
+fn longest_edge(mesh: &isochor_mesh::TetMesh) -> f64 {
+    mesh.tets()
+        .iter()
+        .map(|t| max_edge(&t.map(|v| mesh.positions()[v])))
+        .fold(0.0, f64::max)
 }

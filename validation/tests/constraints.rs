@@ -3,10 +3,11 @@
 //! 2021 as numbers; zonal volumes; compliance limits.
 
 use isochor_constraints::{
-    geometric_stiffness_matrix, jacobian_matrix, Compliance, ConstraintSet, ElementConstraints,
-    Measure, NodalCompliance, NodalConstraints, ZonalConstraints,
+    Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance, NodalConstraints,
+    ZonalConstraints,
 };
 use isochor_mesh::{generate::box_grid, TetMesh, Vec3, Zones};
+use isochor_validation::constraint_checks::{self, jacobian, values};
 use isochor_validation::fd;
 use isochor_validation::strategies::{deformed_box, two_tets, Deformed};
 use nalgebra::{DMatrix, DVector};
@@ -19,46 +20,6 @@ use proptest::test_runner::TestCaseError;
 /// logarithmic measure's `log J` included), and the rounding `eps / STEP ~ 1e-10`; the
 /// largest error measured over these cases is 9.5e-10.
 const FD_TOLERANCE: f64 = 1e-6;
-
-fn flatten(x: &[Vec3]) -> DVector<f64> {
-    DVector::from_iterator(3 * x.len(), x.iter().flat_map(|p| p.iter().copied()))
-}
-
-fn unflatten(q: &DVector<f64>) -> Vec<Vec3> {
-    q.as_slice()
-        .chunks_exact(3)
-        .map(Vec3::from_column_slice)
-        .collect()
-}
-
-/// A dense matrix of `shape` from sparse `(value, (row, col))` entries.
-fn dense<'a>(
-    shape: (usize, usize),
-    entries: impl Iterator<Item = (&'a f64, (usize, usize))>,
-) -> DMatrix<f64> {
-    let mut d = DMatrix::zeros(shape.0, shape.1);
-    entries.for_each(|(&v, (i, j))| d[(i, j)] += v);
-    d
-}
-
-/// The Jacobian `G` at `x`, dense.
-fn jacobian(set: &dyn ConstraintSet, x: &[Vec3]) -> DMatrix<f64> {
-    let g = jacobian_matrix(set, x).expect("constraint Jacobian");
-    dense(g.shape(), g.iter())
-}
-
-/// The geometric stiffness `K_g` at `x` and multipliers `p`, dense.
-fn geometric_stiffness(set: &dyn ConstraintSet, x: &[Vec3], p: &[f64]) -> DMatrix<f64> {
-    let k = geometric_stiffness_matrix(set, x, p).expect("geometric stiffness");
-    dense(k.shape(), k.iter())
-}
-
-fn values(set: &dyn ConstraintSet, x: &[Vec3]) -> DVector<f64> {
-    let mut phi = DVector::zeros(set.num_constraints());
-    set.values(x, phi.as_mut_slice())
-        .expect("constraint values");
-    phi
-}
 
 /// `m_e = V_e Phi(J_e)` of every tet, from the mesh crate's volumes: the reference that the
 /// constraint values are checked against.
@@ -138,15 +99,12 @@ fn all_cases(mesh: &TetMesh) -> Vec<Case> {
     cases
 }
 
-/// The generic harness: `phi` against the reference, `G` against central differences of
-/// `phi`, and `K_g` against central differences of `G^T p`; patterns and value buffers must
-/// agree in length and `K_g` must be symmetric.
+/// The generic harness: `phi` against the reference, and `G` and `K_g` against central
+/// differences ([`constraint_checks::derivative_errors`]); `K_g` must be symmetric.
 fn check_case(case: &Case, deformed: &Deformed, p: &[f64]) -> Result<(), TestCaseError> {
     let set = case.set.as_ref();
     let name = set.name();
     let x = &deformed.x;
-    let q = flatten(x);
-    let p = DVector::from_column_slice(&p[..set.num_constraints()]);
 
     let phi = values(set, x);
     let phi_ref = (case.reference)(&deformed.mesh, x);
@@ -156,34 +114,18 @@ fn check_case(case: &Case, deformed: &Deformed, p: &[f64]) -> Result<(), TestCas
         "{name}: phi differs from the reference by {err:e}"
     );
 
-    let g = jacobian(set, x);
-    let g_fd = fd::jacobian(|q| values(set, &unflatten(q)), &q, fd::STEP);
-    let err = fd::relative_error(&g, &g_fd, 1e-12);
+    let errors = constraint_checks::derivative_errors(set, x, p, 1.0);
     prop_assert!(
-        err < FD_TOLERANCE,
-        "{name}: G vs finite differences {err:e}"
+        errors.jacobian < FD_TOLERANCE,
+        "{name}: G vs finite differences {:e}",
+        errors.jacobian
     );
-
-    let kg = geometric_stiffness(set, x, p.as_slice());
-    // G^T p straight from the pattern: cheaper than assembling G for every FD evaluation.
-    let pattern = set.jacobian_pattern();
-    let force = |q: &DVector<f64>| {
-        let mut entries = vec![0.0; pattern.len()];
-        set.jacobian_values(&unflatten(q), &mut entries)
-            .expect("Jacobian values");
-        let mut f = DVector::zeros(q.len());
-        for (&(row, dof), g) in pattern.iter().zip(entries) {
-            f[dof] += g * p[row];
-        }
-        f
-    };
-    let kg_fd = fd::jacobian(force, &q, fd::STEP);
-    let err = fd::relative_error(&kg, &kg_fd, 1e-12);
     prop_assert!(
-        err < FD_TOLERANCE,
-        "{name}: K_g vs finite differences {err:e}"
+        errors.geometric_stiffness < FD_TOLERANCE,
+        "{name}: K_g vs finite differences {:e}",
+        errors.geometric_stiffness
     );
-    prop_assert!((&kg - kg.transpose()).amax() <= 1e-14 * kg.amax());
+    prop_assert!(errors.asymmetry <= 1e-14);
     Ok(())
 }
 

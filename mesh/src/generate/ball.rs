@@ -1,7 +1,7 @@
 //! Solid balls: a cube grid mapped onto the ball.
 
 use super::lattice::Lattice;
-use super::{positive, resolution};
+use super::{positive, resolution, Wall};
 use crate::{MeshError, TetMesh, Vec3};
 
 /// Largest accepted `res`.
@@ -40,4 +40,11 @@ pub fn ball(radius: f64, res: usize) -> Result<TetMesh, MeshError> {
         .map(|p| radius * cube_to_ball(p.map(|i| (i as f64 - r) / r)))
         .collect();
     TetMesh::new(positions, lattice.tets())
+}
+
+/// The true surface of a [`ball`] of `radius` for
+/// [`crate::ElementMesh::quadratic_on_surface`]: the mid-edge node of an edge with both ends
+/// on the sphere goes to the radial projection of its midpoint onto the sphere.
+pub fn ball_surface(radius: f64) -> impl Fn(&Vec3, &Vec3) -> Option<Vec3> + Copy + Send + Sync {
+    move |a, b| Wall::Sphere(radius).midpoint(a, b)
 }

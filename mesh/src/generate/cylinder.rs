@@ -1,7 +1,7 @@
 //! Solid cylinders and pucks: a square grid mapped onto the disk, extruded along z.
 
 use super::lattice::Lattice;
-use super::{cells_along, positive, resolution};
+use super::{cells_along, positive, resolution, Wall};
 use crate::{MeshError, TetMesh, Vec3};
 
 /// Largest accepted `res` and number of layers.
@@ -41,6 +41,13 @@ pub fn puck(radius: f64, height: f64, res: usize) -> Result<TetMesh, MeshError> 
     let res = resolution(res, MAX_RES)?;
     let layers = cells_along("height", height, radius / res as f64, MAX_RES)?.max(res);
     extruded_disk(radius, height, res, layers)
+}
+
+/// The true surface of a [`cylinder`] or [`puck`] of `radius` for
+/// [`crate::ElementMesh::quadratic_on_surface`]: the mid-edge node of an edge with both ends
+/// on the side wall goes to the radial projection of its midpoint onto the wall.
+pub fn cylinder_surface(radius: f64) -> impl Fn(&Vec3, &Vec3) -> Option<Vec3> + Copy + Send + Sync {
+    move |a, b| Wall::Cylinder(radius).midpoint(a, b)
 }
 
 fn extruded_disk(

@@ -11,6 +11,13 @@
 //! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) |
 //! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) |
 //! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) |
+//!
+//! The curved generators also give their true surface for
+//! [`crate::ElementMesh::quadratic_on_surface`]: [`cylinder_surface`] (cylinder and puck),
+//! [`tube_surface`] and [`ball_surface`] place the mid-edge node of a boundary edge whose
+//! ends both lie on a curved wall at the projection of the edge's midpoint onto that wall
+//! (radially, about the z axis or the origin); other boundary edges (on the flat caps and
+//! rings) stay straight. Rims are edges of both a wall and a cap, and so follow the wall.
 
 mod ball;
 mod cylinder;
@@ -18,12 +25,53 @@ mod grid;
 mod lattice;
 mod tube;
 
-pub use ball::ball;
-pub use cylinder::{cylinder, puck};
+pub use ball::{ball, ball_surface};
+pub use cylinder::{cylinder, cylinder_surface, puck};
 pub use grid::box_grid;
-pub use tube::{tube, TubeMesh};
+pub use tube::{tube, tube_surface, TubeMesh};
 
-use crate::MeshError;
+use crate::{MeshError, Vec3};
+
+/// A point lies on a curved wall when its distance to the axis or centre is within this
+/// fraction of the radius (the generators place vertices there to a few ulps).
+const ON_WALL: f64 = 1e-9;
+
+/// A round wall: a cylinder about the z axis or a sphere about the origin.
+#[derive(Clone, Copy)]
+enum Wall {
+    Cylinder(f64),
+    Sphere(f64),
+}
+
+impl Wall {
+    /// The part of `p` whose length is the distance to the axis or centre.
+    fn radial(self, p: &Vec3) -> Vec3 {
+        match self {
+            Wall::Cylinder(_) => Vec3::new(p.x, p.y, 0.0),
+            Wall::Sphere(_) => *p,
+        }
+    }
+
+    fn radius(self) -> f64 {
+        match self {
+            Wall::Cylinder(r) | Wall::Sphere(r) => r,
+        }
+    }
+
+    /// The projection of the midpoint of `[a, b]` onto the wall, `m + (R / |m_r| - 1) m_r`
+    /// with `m_r` the radial part of the midpoint, if both `a` and `b` lie on the wall.
+    fn midpoint(self, a: &Vec3, b: &Vec3) -> Option<Vec3> {
+        let r = self.radius();
+        let on = |p: &Vec3| (self.radial(p).norm() - r).abs() <= ON_WALL * r;
+        if !(on(a) && on(b)) {
+            return None;
+        }
+        let m = 0.5 * (a + b);
+        let radial = self.radial(&m);
+        let length = radial.norm();
+        (length > 0.0).then(|| m + (r / length - 1.0) * radial)
+    }
+}
 
 /// `value` if it is finite and positive, else an [`MeshError::InvalidParameter`] naming it.
 fn positive(name: &'static str, value: f64) -> Result<f64, MeshError> {

@@ -1,7 +1,7 @@
 //! Thick-walled tubes: a structured `(r, theta, z)` grid, periodic in theta.
 
 use super::lattice::Lattice;
-use super::{cells_along, positive, resolution};
+use super::{cells_along, positive, resolution, Wall};
 use crate::{FaceSelection, MeshError, TetMesh, Vec3};
 use std::f64::consts::PI;
 
@@ -84,4 +84,18 @@ pub fn tube(
         top: part("top", 2, nz),
         mesh,
     })
+}
+
+/// The true surface of a [`tube`] for [`crate::ElementMesh::quadratic_on_surface`]: the
+/// mid-edge node of an edge with both ends on the inner (or outer) wall goes to the radial
+/// projection of its midpoint onto that wall.
+pub fn tube_surface(
+    inner_radius: f64,
+    outer_radius: f64,
+) -> impl Fn(&Vec3, &Vec3) -> Option<Vec3> + Copy + Send + Sync {
+    move |a, b| {
+        Wall::Cylinder(inner_radius)
+            .midpoint(a, b)
+            .or_else(|| Wall::Cylinder(outer_radius).midpoint(a, b))
+    }
 }

@@ -1,20 +1,47 @@
-//! Gmsh `.msh` reader, ASCII formats 2.2 and 4.1: linear tetrahedra (element type 4) are
-//! read; points, lines, triangles and quads are skipped; other volume elements are rejected.
+//! Gmsh `.msh` reader, ASCII formats 2.2 and 4.1: 4-node tetrahedra (element type 4) or
+//! 10-node tetrahedra (type 11, Gmsh's node order, which is ours) are read; points, lines,
+//! triangles (3- and 6-node, types 2 and 9) and quads are skipped, since the boundary faces
+//! follow from the tets ([`crate::ElementMesh::boundary`]); other volume elements, and files
+//! mixing 4- and 10-node tets, are rejected.
 
 use super::text::{Fields, Lines};
-use super::{assemble, read_text};
-use crate::{MeshError, TetMesh, Vec3};
+use super::{assemble, read_text, Cells};
+use crate::element::TetElement;
+use crate::{ElementMesh, MeshError, TetMesh, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
 
-/// Gmsh element type of the 4-node tetrahedron.
-const TET: usize = 4;
-
-/// Reads a Gmsh ASCII mesh (format 2.x or 4.1). Vertices that no tetrahedron uses are
-/// dropped; negatively oriented tets are re-oriented (see [`TetMesh::reoriented`]).
+/// Reads a Gmsh ASCII mesh (format 2.x or 4.1) of 4-node tets. Vertices that no tetrahedron
+/// uses are dropped; negatively oriented tets are re-oriented (see [`TetMesh::reoriented`]).
+/// A file of 10-node tets is refused at its first tet's line: read it with
+/// [`read_gmsh_elements`].
 pub fn read_gmsh(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let path = path.as_ref();
-    parse(path, &read_text(path)?)
+    let (positions, cells) = parse(path, &read_text(path)?)?;
+    linear(path, positions, cells)
+}
+
+/// The linear mesh of parsed nodes and 4-node tets; 10-node tets are refused.
+fn linear(path: &Path, positions: Vec<Vec3>, cells: Cells) -> Result<TetMesh, MeshError> {
+    if cells.kind == TetElement::Tet10 {
+        return Err(MeshError::parse(
+            path,
+            cells.lines[0],
+            "the file holds 10-node (quadratic) tetrahedra: read it with read_gmsh_elements \
+             (its corner mesh is the ElementMesh's corners())",
+        ));
+    }
+    Ok(assemble(path, positions, cells)?.into_corners())
+}
+
+/// Reads a Gmsh ASCII mesh (format 2.x or 4.1) of 4- or 10-node tets into an
+/// [`ElementMesh`] of the file's order (see [`ElementMesh::from_nodes`]: nodes are
+/// renumbered corners first, unused nodes dropped, negative tets re-oriented with their
+/// mid-edge nodes). A bad element is reported at its line.
+pub fn read_gmsh_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshError> {
+    let path = path.as_ref();
+    let (positions, cells) = parse(path, &read_text(path)?)?;
+    assemble(path, positions, cells)
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -47,18 +74,11 @@ impl Nodes {
     }
 }
 
-/// Tets as node indices, with the line of each.
-#[derive(Default)]
-struct Tets {
-    tets: Vec<[usize; 4]>,
-    lines: Vec<usize>,
-}
-
-fn parse(path: &Path, text: &str) -> Result<TetMesh, MeshError> {
+fn parse(path: &Path, text: &str) -> Result<(Vec<Vec3>, Cells), MeshError> {
     let mut lines = Lines::new(path, text, None);
     let mut version = None;
     let mut nodes: Option<Nodes> = None;
-    let mut tets: Option<Tets> = None;
+    let mut cells: Option<Cells> = None;
     while let Some((line, header)) = lines.next_line() {
         if !header.starts_with('$') {
             return Err(lines.error(
@@ -77,7 +97,7 @@ fn parse(path: &Path, text: &str) -> Result<TetMesh, MeshError> {
                 let Some(nodes) = &nodes else {
                     return Err(lines.error(line, "$Elements must come after $Nodes"));
                 };
-                tets = Some(read_elements(&mut lines, v, nodes)?);
+                cells = Some(read_elements(&mut lines, v, nodes)?);
             }
             _ => skip_section(&mut lines, name)?,
         }
@@ -93,10 +113,10 @@ fn parse(path: &Path, text: &str) -> Result<TetMesh, MeshError> {
     if version.is_none() {
         return Err(lines.eof("$MeshFormat: this is not a Gmsh file"));
     }
-    let (Some(nodes), Some(tets)) = (nodes, tets) else {
+    let (Some(nodes), Some(cells)) = (nodes, cells) else {
         return Err(lines.eof("a $Nodes and an $Elements section"));
     };
-    assemble(path, nodes.positions, tets.tets, &tets.lines)
+    Ok((nodes.positions, cells))
 }
 
 /// `version file-type data-size`: ASCII 2.x or 4.1 only.
@@ -199,14 +219,22 @@ fn read_nodes(lines: &mut Lines, version: Version) -> Result<Nodes, MeshError> {
     Ok(nodes)
 }
 
-/// Name of a Gmsh volume element type other than the linear tet, or `None` for points,
-/// lines, triangles and quads (which are skipped).
+/// The tet of Gmsh element type `kind`, if it is one.
+fn tet_type(kind: usize) -> Option<TetElement> {
+    match kind {
+        4 => Some(TetElement::Tet4),
+        11 => Some(TetElement::Tet10),
+        _ => None,
+    }
+}
+
+/// Name of a Gmsh volume element type other than the 4- and 10-node tets, or `None` for
+/// points, lines, triangles and quads (which are skipped).
 fn rejected_volume_type(kind: usize) -> Option<&'static str> {
     Some(match kind {
         5 => "8-node hexahedron",
         6 => "6-node prism",
         7 => "5-node pyramid",
-        11 => "10-node (quadratic) tetrahedron",
         12 => "27-node hexahedron",
         13 => "18-node prism",
         14 => "14-node pyramid",
@@ -234,24 +262,42 @@ fn reject(f: &Fields, kind: usize) -> MeshError {
         |n| format!("element type {kind} ({n})"),
     );
     f.error(format!(
-        "{name} is not supported: isochor reads linear tetrahedra (type 4) only"
+        "{name} is not supported: isochor reads 4-node (type 4) and 10-node (type 11) tetrahedra"
     ))
 }
 
-fn read_tet(f: &mut Fields, nodes: &Nodes, tets: &mut Tets) -> Result<(), MeshError> {
-    let mut tet = [0; 4];
-    for (a, slot) in tet.iter_mut().enumerate() {
-        let tag = f.usize(&format!("node {} of the tetrahedron", a + 1))?;
-        *slot = nodes.get(tag, f)?;
+/// Reads the nodes of one tet of `kind` into `cells`; the first tet fixes the kind of all.
+fn read_tet(
+    f: &mut Fields,
+    kind: TetElement,
+    nodes: &Nodes,
+    cells: &mut Option<Cells>,
+) -> Result<(), MeshError> {
+    let cells = cells.get_or_insert_with(|| Cells {
+        kind,
+        connectivity: Vec::new(),
+        lines: Vec::new(),
+    });
+    if cells.kind != kind {
+        return Err(f.error(format!(
+            "a {}-node tetrahedron in a file of {}-node ones (the first is on line {}): mixed orders are not supported",
+            kind.num_nodes(),
+            cells.kind.num_nodes(),
+            cells.lines[0]
+        )));
     }
-    f.end("the 4 nodes of the tetrahedron")?;
-    tets.tets.push(tet);
-    tets.lines.push(f.line);
+    let n = kind.num_nodes();
+    for a in 0..n {
+        let tag = f.usize(&format!("node {} of the {n}-node tetrahedron", a + 1))?;
+        cells.connectivity.push(nodes.get(tag, f)?);
+    }
+    f.end(&format!("the {n} nodes of the tetrahedron"))?;
+    cells.lines.push(f.line);
     Ok(())
 }
 
-fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<Tets, MeshError> {
-    let mut tets = Tets::default();
+fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<Cells, MeshError> {
+    let mut cells = None;
     match version {
         Version::V2 => {
             let count = lines
@@ -265,10 +311,10 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<T
                 let mut f = lines.data(&what)?;
                 f.usize("element tag")?;
                 let kind = f.usize("element type")?;
-                if kind == TET {
+                if let Some(tet) = tet_type(kind) {
                     let ntags = f.usize("number of tags")?;
                     f.skip(ntags, "an element tag")?;
-                    read_tet(&mut f, nodes, &mut tets)?;
+                    read_tet(&mut f, tet, nodes, &mut cells)?;
                 } else if !is_lower_dimensional(kind) {
                     return Err(reject(&f, kind));
                 }
@@ -285,14 +331,15 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<T
                 b.i64("entityTag")?;
                 let kind = b.usize("elementType")?;
                 let in_block = b.usize("numElementsInBlock")?;
-                if dim == 3 && kind != TET {
+                let tet = tet_type(kind).filter(|_| dim == 3);
+                if dim == 3 && tet.is_none() {
                     return Err(reject(&b, kind));
                 }
                 for _ in 0..in_block {
                     let mut f = lines.data("an element line `tag node...`")?;
-                    if dim == 3 {
+                    if let Some(tet) = tet {
                         f.usize("element tag")?;
-                        read_tet(&mut f, nodes, &mut tets)?;
+                        read_tet(&mut f, tet, nodes, &mut cells)?;
                     }
                 }
                 seen = seen.saturating_add(in_block);
@@ -305,15 +352,25 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<T
             }
         }
     }
-    Ok(tets)
+    Ok(cells.unwrap_or(Cells {
+        kind: TetElement::Tet4,
+        connectivity: Vec::new(),
+        lines: Vec::new(),
+    }))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn read(text: &str) -> Result<TetMesh, MeshError> {
+        let path = Path::new("t.msh");
+        let (positions, cells) = parse(path, text)?;
+        linear(path, positions, cells)
+    }
+
     fn err(text: &str) -> (usize, String) {
-        match parse(Path::new("t.msh"), text) {
+        match read(text) {
             Err(MeshError::Parse {
                 path,
                 line,
@@ -330,7 +387,7 @@ mod tests {
 
     #[test]
     fn minimal_v2_file() {
-        let mesh = parse(Path::new("t.msh"), V2).unwrap();
+        let mesh = read(V2).unwrap();
         assert_eq!(mesh.num_vertices(), 4, "the unused node 9 is dropped");
         assert_eq!(mesh.num_tets(), 1);
         assert!((mesh.rest_volume() - 1.0 / 6.0).abs() < 1e-15);
@@ -352,7 +409,7 @@ mod tests {
         assert!(m.contains("8-node hexahedron"), "{m}");
         let (line, m) = err(&V2.replace("2 4 2 1 1", "2 11 2 1 1"));
         assert_eq!(line, 15);
-        assert!(m.contains("quadratic"), "{m}");
+        assert!(m.contains("node 5 of the 10-node tetrahedron"), "{m}");
         let (line, m) = err(&V2.replace("$Elements\n2\n", "$Elements\n3\n"));
         assert_eq!(line, 16);
         assert!(m.contains("element 3 of 3"), "{m}");
@@ -374,11 +431,75 @@ mod tests {
         assert!(m.contains("version 3"), "{m}");
     }
 
+    /// One 10-node tet over the unit tet's corners, listed negatively oriented (corners 1 3 2
+    /// 4) with its mid-edge nodes in Gmsh's order for that listing, plus a 6-node triangle.
+    const V2_TET10: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n10\n\
+        1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n\
+        12 0.5 0 0\n13 0 0.5 0\n14 0 0 0.5\n23 0.5 0.5 0\n24 0.5 0 0.5\n34 0 0.5 0.5\n\
+        $EndNodes\n$Elements\n2\n\
+        1 9 2 1 1 1 2 3 12 23 13\n\
+        2 11 2 1 1 1 3 2 4 13 23 12 14 24 34\n$EndElements\n";
+
+    #[test]
+    fn ten_node_v2_file_reads_reoriented() {
+        let path = Path::new("t.msh");
+        let (positions, cells) = parse(path, V2_TET10).unwrap();
+        let mesh = assemble(path, positions, cells).unwrap();
+        assert_eq!(mesh.kind(), TetElement::Tet10);
+        assert_eq!((mesh.num_vertices(), mesh.num_nodes()), (4, 10));
+        assert_eq!(mesh.corners().reoriented(), 1);
+        assert!((mesh.rest_volume() - 1.0 / 6.0).abs() < 1e-15);
+        // Every mid-edge node sits at the midpoint of its local edge after re-orientation.
+        let x = mesh.nodes();
+        let element = mesh.element(0);
+        for (k, [a, b]) in crate::element::TET_EDGES.into_iter().enumerate() {
+            let midpoint = 0.5 * (x[element[a]] + x[element[b]]);
+            assert_eq!(x[element[4 + k]], midpoint, "edge {k}");
+        }
+        // The linear reader refuses the file at the tet's line; a mixed file is refused too.
+        let (line, m) = err(V2_TET10);
+        assert_eq!(line, 20);
+        assert!(m.contains("read_gmsh_elements"), "{m}");
+        let mixed = V2_TET10
+            .replace("$Elements\n2\n", "$Elements\n3\n")
+            .replace("$EndElements", "3 4 2 1 1 1 2 3 4\n$EndElements");
+        let (line, m) = err(&mixed);
+        assert_eq!(line, 21);
+        assert!(m.contains("4-node tetrahedron in a file of 10-node"), "{m}");
+        // A mid-edge node that is a corner elsewhere, or on two edges, names the element.
+        let shared = mixed.replace("3 4 2 1 1 1 2 3 4", "3 4 2 1 1 12 2 3 4");
+        let shared = shared
+            .replace("3 4 2 1 1 12", "3 11 2 1 1 12")
+            .replace("12 2 3 4\n", "12 2 3 4 1 23 13 14 24 34\n");
+        let (positions, cells) = parse(path, &shared).unwrap();
+        match assemble(path, positions, cells) {
+            Err(MeshError::Parse { line, message, .. }) => {
+                assert_eq!(line, 20);
+                assert!(
+                    message.contains(
+                        "element 0: node 4 is a mid-edge node here and a corner of element 1"
+                    ),
+                    "{message}"
+                );
+            }
+            other => panic!("expected a parse error, got {other:?}"),
+        }
+        let doubled = V2_TET10.replace("13 23 12 14 24 34", "13 23 12 14 23 34");
+        let (positions, cells) = parse(path, &doubled).unwrap();
+        match assemble(path, positions, cells) {
+            Err(MeshError::Parse { line, message, .. }) => {
+                assert_eq!(line, 20);
+                assert!(message.contains("lies on edge"), "{message}");
+            }
+            other => panic!("expected a parse error, got {other:?}"),
+        }
+    }
+
     const V41: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n2 4 1 4\n0 1 0 1\n1\n0 0 0\n3 1 0 3\n2\n3\n4\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n2 2 1 2\n2 1 2 1\n1 1 2 3\n3 1 4 1\n2 1 2 3 4\n$EndElements\n";
 
     #[test]
     fn minimal_v41_file_and_its_errors() {
-        let mesh = parse(Path::new("t.msh"), V41).unwrap();
+        let mesh = read(V41).unwrap();
         assert_eq!((mesh.num_vertices(), mesh.num_tets()), (4, 1));
         let (line, m) = err(&V41.replace("3 1 4 1", "3 1 5 1"));
         assert_eq!(line, 21);

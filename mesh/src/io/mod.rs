@@ -1,6 +1,12 @@
 //! File I/O: VTU/PVD for ParaView and meshio, Gmsh `.msh` (2.2 and 4.1 ASCII) and TetGen
 //! `.node`/`.ele` readers. Readers never panic on malformed input: they return
 //! [`MeshError::Parse`] with the path, the line and what was expected. Writers are atomic.
+//!
+//! Gmsh and VTU files may hold 4- or 10-node tets: [`read_mesh_elements`] (and
+//! [`read_gmsh_elements`], [`read_vtu_elements`]) return an [`ElementMesh`] of the file's
+//! order; [`read_mesh`] (and [`read_gmsh`], [`read_vtu`]) return the linear [`TetMesh`] of a
+//! linear file and refuse a quadratic one, naming the line or cell, rather than silently
+//! dropping its curved geometry (its corner mesh is `read_mesh_elements(path)?.corners()`).
 
 mod atomic;
 mod gmsh;
@@ -9,30 +15,53 @@ mod tetgen;
 mod text;
 mod vtu;
 
-pub use gmsh::read_gmsh;
+pub use gmsh::{read_gmsh, read_gmsh_elements};
 pub use pvd::write_pvd;
 pub use tetgen::read_tetgen;
-pub use vtu::{read_vtu, read_vtu_file, write_vtu, Field, FieldValues, VtuFile};
+pub use vtu::{
+    read_vtu, read_vtu_elements, read_vtu_file, write_vtu, write_vtu_elements, Field, FieldValues,
+    VtuFile,
+};
 
-use crate::{MeshError, TetMesh, Vec3};
+use crate::element::TetElement;
+use crate::{ElementMesh, MeshError, TetMesh, Vec3};
 use std::path::Path;
 
 /// Reads a mesh file chosen by its extension: `.msh` (Gmsh), `.vtu`, `.node` or `.ele`
 /// (TetGen; the other file of the pair is found next to it).
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let path = path.as_ref();
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match extension.as_deref() {
+    match extension(path).as_deref() {
         Some("msh") => read_gmsh(path),
         Some("vtu") => read_vtu(path),
         Some("node" | "ele") => read_tetgen(path),
-        _ => Err(MeshError::Format {
-            path: path.into(),
-            message: "unknown mesh format: expected a .msh, .vtu, .node or .ele file".into(),
-        }),
+        _ => Err(unknown_format(path)),
+    }
+}
+
+/// Reads a mesh file of 4- or 10-node tets chosen by its extension, like [`read_mesh`]: a
+/// TetGen pair gives a 4-node mesh.
+pub fn read_mesh_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshError> {
+    let path = path.as_ref();
+    match extension(path).as_deref() {
+        Some("msh") => read_gmsh_elements(path),
+        Some("vtu") => read_vtu_elements(path),
+        Some("node" | "ele") => Ok(ElementMesh::linear(read_tetgen(path)?)),
+        _ => Err(unknown_format(path)),
+    }
+}
+
+/// The lower-case extension of `path`.
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
+fn unknown_format(path: &Path) -> MeshError {
+    MeshError::Format {
+        path: path.into(),
+        message: "unknown mesh format: expected a .msh, .vtu, .node or .ele file".into(),
     }
 }
 
@@ -42,37 +71,33 @@ fn read_text(path: &Path) -> Result<String, MeshError> {
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
-/// Builds a mesh from parsed vertices and tets, dropping vertices no tet uses (renumbering
-/// the rest in order). A tet the constructor rejects is reported at its line `tet_lines[e]`
-/// of `path`.
-fn assemble(
-    path: &Path,
-    positions: Vec<Vec3>,
-    mut tets: Vec<[usize; 4]>,
-    tet_lines: &[usize],
-) -> Result<TetMesh, MeshError> {
-    if tets.is_empty() {
+/// The elements read from a file: their kind, `kind.num_nodes()` node indices per element, and
+/// the line each was read from.
+struct Cells {
+    kind: TetElement,
+    connectivity: Vec<usize>,
+    lines: Vec<usize>,
+}
+
+/// Builds a mesh from parsed nodes and elements with [`ElementMesh::from_nodes`] (which drops
+/// nodes no element uses and renumbers the rest, corners first, in order). An element the
+/// constructor rejects is reported at its line of `path`.
+fn assemble(path: &Path, positions: Vec<Vec3>, cells: Cells) -> Result<ElementMesh, MeshError> {
+    if cells.connectivity.is_empty() {
         return Err(MeshError::Format {
             path: path.into(),
-            message: "the file contains no linear tetrahedra".into(),
+            message: "the file contains no tetrahedra".into(),
         });
     }
-    let mut new_index = vec![usize::MAX; positions.len()];
-    tets.iter().flatten().for_each(|&v| new_index[v] = 0);
-    let mut kept = Vec::new();
-    for (v, p) in positions.into_iter().enumerate() {
-        if new_index[v] == 0 {
-            new_index[v] = kept.len();
-            kept.push(p);
-        }
-    }
-    tets.iter_mut().for_each(|t| *t = t.map(|v| new_index[v]));
-    TetMesh::new(kept, tets).map_err(|e| {
-        let tet = match e {
+    ElementMesh::from_nodes(cells.kind, positions, cells.connectivity).map_err(|e| {
+        let element = match e {
             MeshError::RepeatedVertex { tet, .. } | MeshError::Degenerate { tet, .. } => tet,
+            MeshError::FoldedElement { element, .. } | MeshError::MidEdgeNode { element, .. } => {
+                element
+            }
             other => return other,
         };
-        let line = tet_lines.get(tet).copied().unwrap_or(0);
+        let line = cells.lines.get(element).copied().unwrap_or(0);
         MeshError::parse(path, line, e.to_string())
     })
 }

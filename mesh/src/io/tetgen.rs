@@ -2,7 +2,8 @@
 //! and boundary markers tolerated, `#` comments skipped.
 
 use super::text::Lines;
-use super::{assemble, read_text};
+use super::{assemble, read_text, Cells};
+use crate::element::TetElement;
 use crate::{MeshError, TetMesh, Vec3};
 use std::path::Path;
 
@@ -15,8 +16,8 @@ pub fn read_tetgen(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let node_path = path.with_extension("node");
     let ele_path = path.with_extension("ele");
     let (positions, base) = parse_node(&node_path, &read_text(&node_path)?)?;
-    let (tets, lines) = parse_ele(&ele_path, &read_text(&ele_path)?, base, positions.len())?;
-    assemble(&ele_path, positions, tets, &lines)
+    let cells = parse_ele(&ele_path, &read_text(&ele_path)?, base, positions.len())?;
+    Ok(assemble(&ele_path, positions, cells)?.into_corners())
 }
 
 /// `n dim attributes markers`, then `index x y z [attributes] [marker]` per node. Returns the
@@ -68,12 +69,7 @@ fn parse_node(path: &Path, text: &str) -> Result<(Vec<Vec3>, usize), MeshError> 
 }
 
 /// `n nodes-per-tet attributes`, then `index v0 v1 v2 v3 [attributes]` per tet.
-fn parse_ele(
-    path: &Path,
-    text: &str,
-    base: usize,
-    points: usize,
-) -> Result<(Vec<[usize; 4]>, Vec<usize>), MeshError> {
+fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cells, MeshError> {
     let mut lines = Lines::new(path, text, Some('#'));
     let mut h = lines.fields("the header `<#tetrahedra> <nodes per tetrahedron> <#attributes>`")?;
     let count = h.usize("the number of tetrahedra")?;
@@ -84,7 +80,7 @@ fn parse_ele(
             "{per_tet}-node tetrahedra are not supported: isochor reads linear (4-node) tetrahedra only"
         )));
     }
-    let mut tets = Vec::new();
+    let mut connectivity = Vec::new();
     let mut tet_lines = Vec::new();
     for i in 0..count {
         let mut f = lines.fields(&format!("tetrahedron {} of {count}", i + 1))?;
@@ -107,7 +103,7 @@ fn parse_ele(
         }
         f.skip(attributes, "a tetrahedron attribute")?;
         f.end("the tetrahedron's nodes and attributes")?;
-        tets.push(tet);
+        connectivity.extend(tet);
         tet_lines.push(f.line);
     }
     if let Some((line, text)) = lines.next_line() {
@@ -116,7 +112,11 @@ fn parse_ele(
             format!("expected end of file after {count} tetrahedra, found `{text}`"),
         ));
     }
-    Ok((tets, tet_lines))
+    Ok(Cells {
+        kind: TetElement::Tet4,
+        connectivity,
+        lines: tet_lines,
+    })
 }
 
 #[cfg(test)]
@@ -129,8 +129,8 @@ mod tests {
 
     fn parse_pair(node: &str, ele: &str) -> Result<TetMesh, MeshError> {
         let (x, base) = parse_node(Path::new("t.node"), node)?;
-        let (tets, lines) = parse_ele(Path::new("t.ele"), ele, base, x.len())?;
-        assemble(Path::new("t.ele"), x, tets, &lines)
+        let cells = parse_ele(Path::new("t.ele"), ele, base, x.len())?;
+        Ok(assemble(Path::new("t.ele"), x, cells)?.into_corners())
     }
 
     fn err(node: &str, ele: &str) -> (String, usize, String) {

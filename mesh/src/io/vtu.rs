@@ -1,16 +1,23 @@
-//! VTK XML UnstructuredGrid (`.vtu`) files of linear tets, ASCII, full `f64` precision, with
-//! named point and cell data: a writer readable by ParaView and meshio, and a reader for the
-//! files it writes (and other ASCII VTU files of linear tets).
+//! VTK XML UnstructuredGrid (`.vtu`) files of linear or quadratic tets (VTK cell types 10 and
+//! 24; quadratic tetra nodes in VTK's order, see [`TetElement::vtk_order`]), ASCII, full `f64`
+//! precision, with named point and cell data: a writer readable by ParaView and meshio, and a
+//! reader for the files it writes (and other ASCII VTU files of one of these cell types).
 
 use super::atomic::write_atomic;
 use super::read_text;
-use crate::{MeshError, TetMesh, Vec3};
+use crate::element::TetElement;
+use crate::{ElementMesh, MeshError, TetMesh, Vec3};
 use std::io::{self, Write};
 use std::path::Path;
 use std::str::FromStr;
 
-/// VTK cell type of the linear tetrahedron.
-const VTK_TETRA: u8 = 10;
+/// VTK cell type of a tet element: `VTK_TETRA` (10) or `VTK_QUADRATIC_TETRA` (24).
+fn vtk_type(kind: TetElement) -> usize {
+    match kind {
+        TetElement::Tet4 => 10,
+        TetElement::Tet10 => 24,
+    }
+}
 
 /// Values of a data array: one per point or one per cell.
 #[derive(Debug, Clone, PartialEq)]
@@ -74,15 +81,16 @@ impl Field {
 #[derive(Debug, Clone, PartialEq)]
 pub struct VtuFile {
     pub points: Vec<Vec3>,
-    pub tets: Vec<[usize; 4]>,
+    /// The kind of every cell.
+    pub element: TetElement,
+    /// `element.num_nodes()` point indices per cell, in our node order.
+    pub cells: Vec<usize>,
     pub point_data: Vec<Field>,
     pub cell_data: Vec<Field>,
 }
 
-/// Writes an ASCII VTU file of the tets `tets` over `points`, with `point_data` (one tuple per
-/// point) and `cell_data` (one per tet). Reals are written in the shortest form that reads
-/// back to the same `f64`; non-finite values are written as `NaN`/`inf` (which meshio and this
-/// reader accept). The write is atomic.
+/// Writes an ASCII VTU file of the linear tets `tets` over `points`, with `point_data` (one
+/// tuple per point) and `cell_data` (one per tet); see [`write_vtu_elements`].
 pub fn write_vtu(
     path: impl AsRef<Path>,
     points: &[Vec3],
@@ -90,21 +98,51 @@ pub fn write_vtu(
     point_data: &[Field],
     cell_data: &[Field],
 ) -> Result<(), MeshError> {
+    write_vtu_elements(
+        path,
+        points,
+        TetElement::Tet4,
+        tets.as_flattened(),
+        point_data,
+        cell_data,
+    )
+}
+
+/// Writes an ASCII VTU file of `kind` elements over `points` (`cells` lists
+/// `kind.num_nodes()` point indices per element in our node order; for an [`ElementMesh`],
+/// its nodes, kind and connectivity), with `point_data` (one tuple per point) and `cell_data`
+/// (one per element). Quadratic tets are written as VTK quadratic tetra (cell type 24), which
+/// ParaView draws curved. Reals are written in the shortest form that reads back to the same
+/// `f64`; non-finite values are written as `NaN`/`inf` (which meshio and this reader accept).
+/// The write is atomic.
+pub fn write_vtu_elements(
+    path: impl AsRef<Path>,
+    points: &[Vec3],
+    kind: TetElement,
+    cells: &[usize],
+    point_data: &[Field],
+    cell_data: &[Field],
+) -> Result<(), MeshError> {
     let path = path.as_ref();
-    if let Some((tet, &index)) = tets
-        .iter()
-        .enumerate()
-        .find_map(|(e, t)| t.iter().find(|&&v| v >= points.len()).map(|v| (e, v)))
-    {
+    let n = kind.num_nodes();
+    if cells.len() % n != 0 {
+        return Err(MeshError::parameter(
+            "cells",
+            cells.len(),
+            format!("must hold {n} point indices per element"),
+        ));
+    }
+    let num_cells = cells.len() / n;
+    if let Some(i) = cells.iter().position(|&v| v >= points.len()) {
         return Err(MeshError::IndexOutOfRange {
-            tet,
-            index,
+            tet: i / n,
+            index: cells[i],
             vertices: points.len(),
         });
     }
     for (fields, expected, kind) in [
         (point_data, points.len(), "point"),
-        (cell_data, tets.len(), "cell"),
+        (cell_data, num_cells, "cell"),
     ] {
         if let Some(f) = fields.iter().find(|f| f.len() != expected) {
             return Err(MeshError::parameter(
@@ -125,7 +163,7 @@ pub fn write_vtu(
             w,
             r#"    <Piece NumberOfPoints="{}" NumberOfCells="{}">"#,
             points.len(),
-            tets.len()
+            num_cells
         )?;
         write_section(w, "PointData", point_data)?;
         write_section(w, "CellData", cell_data)?;
@@ -137,24 +175,30 @@ pub fn write_vtu(
             w,
             r#"        <DataArray type="Int64" Name="connectivity" format="ascii">"#
         )?;
-        for t in tets {
-            writeln!(w, "{} {} {} {}", t[0], t[1], t[2], t[3])?;
+        for cell in cells.chunks_exact(n) {
+            let vtk: Vec<String> = kind
+                .vtk_order()
+                .iter()
+                .map(|&a| cell[a].to_string())
+                .collect();
+            writeln!(w, "{}", vtk.join(" "))?;
         }
         writeln!(w, "        </DataArray>")?;
         writeln!(
             w,
             r#"        <DataArray type="Int64" Name="offsets" format="ascii">"#
         )?;
-        for e in 1..=tets.len() {
-            writeln!(w, "{}", 4 * e)?;
+        for e in 1..=num_cells {
+            writeln!(w, "{}", n * e)?;
         }
         writeln!(w, "        </DataArray>")?;
         writeln!(
             w,
             r#"        <DataArray type="UInt8" Name="types" format="ascii">"#
         )?;
-        for _ in tets {
-            writeln!(w, "{VTK_TETRA}")?;
+        let cell_type = vtk_type(kind);
+        for _ in 0..num_cells {
+            writeln!(w, "{cell_type}")?;
         }
         writeln!(w, "        </DataArray>")?;
         writeln!(w, "      </Cells>")?;
@@ -215,21 +259,42 @@ fn unescape(s: &str) -> String {
         .replace("&amp;", "&")
 }
 
-/// Reads the mesh of a VTU file (its data arrays are not interpreted).
+/// Reads the linear mesh of a VTU file of linear tets (its data arrays are not interpreted);
+/// a file of quadratic tets is refused at its first cell: read it with [`read_vtu_elements`].
 pub fn read_vtu(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let path = path.as_ref();
-    let file = parse(path, &read_text(path)?, false)?;
-    TetMesh::new(file.points, file.tets).map_err(|e| MeshError::Format {
-        path: path.into(),
-        message: e.to_string(),
-    })
+    let file = parse(path, &read_text(path)?, false, false)?;
+    let tets = file
+        .cells
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect();
+    TetMesh::new(file.points, tets).map_err(|e| format_error(path, e))
 }
 
-/// Reads a VTU file with its point and cell data (`Float32/64` arrays of 1 or 3 components,
-/// integer arrays of 1 component).
+/// Reads the mesh of a VTU file of linear or quadratic tets as an [`ElementMesh`] (see
+/// [`ElementMesh::from_nodes`]: points no cell uses are dropped; a file written from an
+/// `ElementMesh` reads back with the same numbering).
+pub fn read_vtu_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshError> {
+    let path = path.as_ref();
+    let file = parse(path, &read_text(path)?, false, true)?;
+    ElementMesh::from_nodes(file.element, file.points, file.cells)
+        .map_err(|e| format_error(path, e))
+}
+
+/// A mesh error of the contents of file `path`.
+fn format_error(path: &Path, e: MeshError) -> MeshError {
+    MeshError::Format {
+        path: path.into(),
+        message: e.to_string(),
+    }
+}
+
+/// Reads a VTU file of linear or quadratic tets with its point and cell data (`Float32/64`
+/// arrays of 1 or 3 components, integer arrays of 1 component).
 pub fn read_vtu_file(path: impl AsRef<Path>) -> Result<VtuFile, MeshError> {
     let path = path.as_ref();
-    parse(path, &read_text(path)?, true)
+    parse(path, &read_text(path)?, true, true)
 }
 
 /// A `<DataArray>` found in the file.
@@ -315,8 +380,14 @@ fn attributes<'a>(
     Ok(out)
 }
 
-/// Scans the XML for the piece size and the data arrays, then builds the file contents.
-fn parse(path: &Path, text: &str, with_fields: bool) -> Result<VtuFile, MeshError> {
+/// Scans the XML for the piece size and the data arrays, then builds the file contents; with
+/// `quadratic` false, quadratic tets are refused.
+fn parse(
+    path: &Path,
+    text: &str,
+    with_fields: bool,
+    quadratic: bool,
+) -> Result<VtuFile, MeshError> {
     let err =
         |offset: usize, message: String| MeshError::parse(path, line_of(text, offset), message);
     let mut stack: Vec<&str> = Vec::new();
@@ -462,7 +533,6 @@ fn parse(path: &Path, text: &str, with_fields: bool) -> Result<VtuFile, MeshErro
     let num_coords = num_points
         .checked_mul(3)
         .ok_or_else(|| too_many("points"))?;
-    let num_indices = num_cells.checked_mul(4).ok_or_else(|| too_many("cells"))?;
     let coords: Vec<f64> = values(path, text, points_array, num_coords)?;
     if let Some(i) = coords.iter().position(|c| !c.is_finite()) {
         let line = token_line(text, points_array, i);
@@ -477,51 +547,76 @@ fn parse(path: &Path, text: &str, with_fields: bool) -> Result<VtuFile, MeshErro
         .map(Vec3::from_column_slice)
         .collect();
 
+    // The largest cell has 10 points.
+    num_cells.checked_mul(10).ok_or_else(|| too_many("cells"))?;
     let types_array = find("Cells", Some("types"))?;
     let types: Vec<usize> = values(path, text, types_array, num_cells)?;
-    let offsets_array = find("Cells", Some("offsets"))?;
-    let offsets: Vec<usize> = values(path, text, offsets_array, num_cells)?;
-    let connectivity_array = find("Cells", Some("connectivity"))?;
-    let connectivity: Vec<usize> = values(path, text, connectivity_array, num_indices)?;
     let at =
         |a: &Array, i: usize, what: String| MeshError::parse(path, token_line(text, a, i), what);
+    let kinds = if quadratic {
+        &[TetElement::Tet4, TetElement::Tet10][..]
+    } else {
+        &[TetElement::Tet4][..]
+    };
+    let first = types.first().copied().unwrap_or(10);
+    let Some(&element) = kinds.iter().find(|&&k| vtk_type(k) == first) else {
+        let hint = if first == vtk_type(TetElement::Tet10) {
+            ": this file holds quadratic tetrahedra, read it with read_vtu_elements"
+        } else {
+            ""
+        };
+        return Err(at(
+            types_array,
+            0,
+            format!(
+                "cell 0: VTK cell type {first} is not supported{hint} (isochor reads tetrahedra, \
+                 type 10, and quadratic tetrahedra, type 24)"
+            ),
+        ));
+    };
+    let n = element.num_nodes();
+    let num_indices = num_cells * n;
+    let offsets_array = find("Cells", Some("offsets"))?;
+    let offsets: Vec<usize> = values(path, text, offsets_array, num_cells)?;
     for e in 0..num_cells {
-        if types[e] != usize::from(VTK_TETRA) {
+        if types[e] != first {
             return Err(at(
                 types_array,
                 e,
                 format!(
-                    "cell {e}: VTK cell type {} is not supported: only linear tetrahedra (type 10)",
+                    "cell {e}: VTK cell type {} after cells of type {first}: cells of one type only are supported",
                     types[e]
                 ),
             ));
         }
-        if offsets[e] != 4 * (e + 1) {
+        if offsets[e] != n * (e + 1) {
             return Err(at(
                 offsets_array,
                 e,
                 format!(
-                    "cell {e}: expected offset {} (4 points per tetrahedron), found {}",
-                    4 * (e + 1),
+                    "cell {e}: expected offset {} ({n} points per cell of type {first}), found {}",
+                    n * (e + 1),
                     offsets[e]
                 ),
             ));
         }
     }
+    let connectivity_array = find("Cells", Some("connectivity"))?;
+    let connectivity: Vec<usize> = values(path, text, connectivity_array, num_indices)?;
     if let Some(i) = connectivity.iter().position(|&v| v >= num_points) {
         return Err(at(
             connectivity_array,
             i,
             format!(
                 "cell {}: point {} is out of range (the piece has {num_points} points)",
-                i / 4,
+                i / n,
                 connectivity[i]
             ),
         ));
     }
-    let tets = connectivity
-        .chunks_exact(4)
-        .map(|c| [c[0], c[1], c[2], c[3]])
+    let cells = connectivity
+        .chunks_exact(n)
+        .flat_map(|c| element.vtk_order().iter().map(|&a| c[a]))
         .collect();
 
     let fields = |parent: &str, count: usize| -> Result<Vec<Field>, MeshError> {
@@ -536,7 +631,8 @@ fn parse(path: &Path, text: &str, with_fields: bool) -> Result<VtuFile, MeshErro
     };
     Ok(VtuFile {
         points,
-        tets,
+        element,
+        cells,
         point_data: fields("PointData", num_points)?,
         cell_data: fields("CellData", num_cells)?,
     })
