@@ -58,7 +58,7 @@ pub trait ConstraintSet: Send + Sync + std::fmt::Debug {
 
     /// The vertex that constraint `row` is attached to, if any: solvers order each such
     /// row right after that vertex's DOFs in the KKT system, which keeps the `C = 0`
-    /// factorization pivot-safe (see NOTES-toolchain). `None` (the default) for rows
+    /// factorization pivot-safe (see docs/toolchain.md). `None` (the default) for rows
     /// spread over many vertices, such as zonal constraints.
     fn anchor_vertex(&self, row: usize) -> Option<usize> {
         let _ = row;

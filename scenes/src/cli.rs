@@ -1,4 +1,4 @@
-//! The `isochor` command line (contract: DESIGN.md section 4).
+//! The `isochor` command line (contract: docs/contracts.md).
 //!
 //! ```text
 //! isochor list                                   # built-in scenes, one per line

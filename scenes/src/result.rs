@@ -1,5 +1,5 @@
 //! The result of one run, as `--json` prints it and `summary.json` stores it. The keys of
-//! DESIGN.md section 4 are fields of [`RunResult`]; everything else is extra.
+//! docs/contracts.md are fields of [`RunResult`]; everything else is extra.
 
 use serde::Serialize;
 use std::collections::BTreeMap;

@@ -1,4 +1,4 @@
-//! The `isochor` binary end to end: the command-line contract of DESIGN.md section 4.
+//! The `isochor` binary end to end: the command-line contract of docs/contracts.md.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -308,7 +308,7 @@ fn appendix_a_element_constraints_lock_nodal_ones_do_not() {
         // Counting (eq. 1): P0 over-constrains, P1 leaves room.
         assert!(n_p0 > n_free && n_p1 < n_free);
         assert!(s1.null_dimension() >= n_free - n_p1);
-        // The 3 spurious pressure modes of the nodal Jacobian (NOTES-toolchain) persist
+        // The 3 spurious pressure modes of the nodal Jacobian (docs/toolchain.md) persist
         // under clamping: they depend on the connectivity only.
         assert_eq!(s1.rank, n_p1 - 3, "{label}");
         assert!(s0.null_dimension() < s1.null_dimension());
@@ -325,7 +325,7 @@ fn appendix_a_element_constraints_lock_nodal_ones_do_not() {
 }
 
 /// On a structured box without boundary conditions the nodal Jacobian has exactly 3 zero
-/// singular values (spurious pressure modes, NOTES-toolchain).
+/// singular values (spurious pressure modes, docs/toolchain.md).
 #[test]
 fn nodal_jacobian_of_a_free_box_has_three_spurious_pressure_modes() {
     let mesh = box_grid(Vec3::zeros(), Vec3::new(4.0, 3.0, 3.0), [4, 3, 3]).expect("box");

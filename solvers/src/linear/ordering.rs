@@ -1,5 +1,5 @@
 //! Fill-reducing order for the saddle-point matrix `[[K, G^T], [G, -C]]` that keeps
-//! `LDL^T` without pivoting stable at `C = 0` (NOTES-toolchain: AMD alone meets zero
+//! `LDL^T` without pivoting stable at `C = 0` (docs/toolchain.md: AMD alone meets zero
 //! pivots there): every constraint row is placed right after its *anchor* DOF (for
 //! nodal P1 constraints, the node's last free displacement DOF), so its pivot is
 //! formed after the displacement it couples to has been eliminated. Constraints without

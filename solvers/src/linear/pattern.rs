@@ -1,5 +1,5 @@
 //! A sparsity pattern built once from `(row, col)` pairs with duplicates, refilled with
-//! new values every Newton iteration (the values/pattern split of DESIGN.md sec. 3).
+//! new values every Newton iteration (patterns built once, values refilled: docs/toolchain.md).
 //!
 //! Every input pair gets a precomputed *slot* in the compressed-column value array, so a
 //! refill is a zeroing pass plus one scatter-add per input value, with no sorting.
