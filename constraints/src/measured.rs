@@ -54,7 +54,7 @@ pub(crate) struct MeasuredElements {
     geometry: RestGeometry,
     /// `L_j(xi_q)`, the corner (barycentric) shape functions at every point of the rule.
     corner_values: Vec<[f64; 4]>,
-    /// `integral_e L_i L_j dV`, exact (degree-5 rule), for the compliance.
+    /// `integral_e L_i L_j dV`, exact, for the compliance.
     corner_products: Vec<[[f64; 4]; 4]>,
 }
 
@@ -67,9 +67,16 @@ impl MeasuredElements {
     ) -> Result<Self, ConstraintError> {
         let geometry = rest_geometry(mesh, rule)?;
         let corner_values = rule.points().iter().map(corner_shapes).collect();
-        // L_i L_j det(dX/dxi) has degree at most 2 + 3 = 5.
-        let exact_rule = TetQuadrature::Degree5;
-        let exact = rest_geometry(mesh, exact_rule)?;
+        // L_i L_j det(dX/dxi) has degree 2 + 3 (p - 1) on elements of order p: the degree-2
+        // rule is exact on 4-node tets, the degree-5 rule on 10-node tets.
+        let exact_rule = match mesh.kind() {
+            TetElement::Tet4 => TetQuadrature::Degree2,
+            TetElement::Tet10 => TetQuadrature::Degree5,
+        };
+        let other = (exact_rule != rule)
+            .then(|| rest_geometry(mesh, exact_rule))
+            .transpose()?;
+        let exact = other.as_ref().unwrap_or(&geometry);
         let exact_shapes: Vec<[f64; 4]> = exact_rule.points().iter().map(corner_shapes).collect();
         let corner_products = (0..mesh.num_elements())
             .map(|e| {

@@ -101,9 +101,9 @@ pub struct AreaRatio {
     pub hessian: Matrix9,
 }
 
-/// `J~ = s / (2 A_0)` of a 3-node triangle and its derivatives, by the quadrature face kernel
-/// (one point). Where the deformed triangle is degenerate (`s = 0`), `J~ = 0` is not
-/// differentiable and the derivatives returned are zero.
+/// `J~ = s / (2 A_0)` of a 3-node triangle and its derivatives: the one-point case of the
+/// kernel behind [`crate::Epidermis::evaluate`]. Where the deformed triangle is degenerate
+/// (`s = 0`), `J~ = 0` is not differentiable and the derivatives returned are zero.
 pub fn area_ratio_derivatives(x: &[Vector3<f64>; 3], rest: &RestTriangle) -> AreaRatio {
     let (areas, gradients) = rest.one_point();
     let mut gradient = Vector9::zeros();
