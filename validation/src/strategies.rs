@@ -331,3 +331,30 @@ fn longest_edge(mesh: &isochor_mesh::TetMesh) -> f64 {
         .map(|t| max_edge(&t.map(|v| mesh.positions()[v])))
         .fold(0.0, f64::max)
 }
+
+/// Material parameters drawn for the derivative tests: shear modulus, Lame's first
+/// parameter, the `beta` of `U(J; beta)` (Sheen et al. 2021, eq. 13) and the F-bar
+/// extension's `epsilon` (eq. 10-12).
+#[derive(Debug, Clone, Copy)]
+pub struct MaterialParams {
+    /// Shear modulus `mu` in `[0.1, 10]`.
+    pub mu: f64,
+    /// Lame's first parameter in `[0.05, 200]`: from compressible to nearly incompressible.
+    pub lambda: f64,
+    /// `beta` in `[0, 20]`.
+    pub beta: f64,
+    /// `epsilon` in `[0.01, 0.5]`.
+    pub epsilon: f64,
+}
+
+/// Random [`MaterialParams`] over the ranges documented on its fields.
+pub fn material_params() -> impl Strategy<Value = MaterialParams> {
+    (0.1..10.0f64, 0.05..200.0f64, 0.0..20.0f64, 0.01..0.5f64).prop_map(
+        |(mu, lambda, beta, epsilon)| MaterialParams {
+            mu,
+            lambda,
+            beta,
+            epsilon,
+        },
+    )
+}

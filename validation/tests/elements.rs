@@ -42,8 +42,9 @@ use isochor_validation::constraint_checks::{self, flatten, jacobian, unflatten, 
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
 use isochor_validation::pinned::{assert_pinned, Tolerance};
 use isochor_validation::strategies::{
-    deform_nodes, deformed_box, max_edge, near_identity, quadratic, rest_tet10, rest_triangle,
-    two_tets, with_determinant, DeformedElements,
+    deform_nodes, deformed_box, material_params as params, max_edge, near_identity, quadratic,
+    rest_tet10, rest_triangle, two_tets, with_determinant, DeformedElements,
+    MaterialParams as Params,
 };
 use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen, Vector2, Vector3};
 use proptest::prelude::*;
@@ -68,26 +69,6 @@ fn record(name: &str, error: f64) {
 
 // ---------------------------------------------------------------------------------------------
 // The quadrature element kernel on 10-node tets, every material
-
-/// Material parameters drawn for each case.
-#[derive(Debug, Clone, Copy)]
-struct Params {
-    mu: f64,
-    lambda: f64,
-    beta: f64,
-    epsilon: f64,
-}
-
-fn params() -> impl Strategy<Value = Params> {
-    (0.1..10.0f64, 0.05..200.0f64, 0.0..20.0f64, 0.01..0.5f64).prop_map(
-        |(mu, lambda, beta, epsilon)| Params {
-            mu,
-            lambda,
-            beta,
-            epsilon,
-        },
-    )
-}
 
 /// Every material of the energy layer, the F-bar energy with its C2 extension and the
 /// constrained neo-Hookean included.

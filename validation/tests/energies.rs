@@ -15,7 +15,8 @@ use isochor_energies::{
 };
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
 use isochor_validation::strategies::{
-    max_edge, near_identity, rest_tet, rest_triangle, with_determinant,
+    material_params as params, max_edge, near_identity, rest_tet, rest_triangle, with_determinant,
+    MaterialParams as Params,
 };
 use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, SymmetricEigen, Unit, Vector3};
 use proptest::prelude::*;
@@ -23,26 +24,6 @@ use proptest::test_runner::TestCaseError;
 
 /// Finite-difference agreement required everywhere (relative, max norm).
 const TOLERANCE: f64 = 1e-6;
-
-/// Material parameters drawn for each case.
-#[derive(Debug, Clone, Copy)]
-struct Params {
-    mu: f64,
-    lambda: f64,
-    beta: f64,
-    epsilon: f64,
-}
-
-fn params() -> impl Strategy<Value = Params> {
-    (0.1..10.0f64, 0.05..200.0f64, 0.0..20.0f64, 0.01..0.5f64).prop_map(
-        |(mu, lambda, beta, epsilon)| Params {
-            mu,
-            lambda,
-            beta,
-            epsilon,
-        },
-    )
-}
 
 fn to_dvec(f: &Matrix3<f64>) -> DVector<f64> {
     DVector::from_column_slice(f.as_slice())
