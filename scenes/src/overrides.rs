@@ -3,7 +3,7 @@
 //!
 //! `KEY` is a dotted path (`material.nu`, `stepping.steps`, `dirichlet.1.motion.rotate.degrees`,
 //! array entries by index) or a flat parameter name from [`FLAT_KEYS`] (`nu`, `E`, `res`,
-//! `steps`, `method`, ...). Any key of the scene's `[mesh]` table (`res`, `radius`, ...) is a
+//! `steps`, `method`, `element`, ...). Any key of the scene's `[mesh]` table (`res`, `radius`, ...) is a
 //! flat name too. Two names are special: `mesh=PATH` replaces the generated mesh by a mesh
 //! file, and `zones=K-ring` is shorthand for `zones.kind = "k-ring"`, `zones.k = K`.
 //! `VALUE` is read as a TOML value (`0.4999`, `4`, `true`, `[0, -9.8, 0]`, `"text"`) and
@@ -15,6 +15,7 @@ use toml::Value;
 /// Flat parameter names and the dotted keys they set.
 pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("method", "method"),
+    ("element", "element"),
     ("nu", "material.nu"),
     ("E", "material.young"),
     ("young", "material.young"),

@@ -5,7 +5,8 @@ use crate::result::StepRecord;
 use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
 use crate::selection::Selections;
 use crate::SceneError;
-use isochor_mesh::{TetMesh, Vec3, TET_FACES};
+use isochor_mesh::element::deformation_gradient;
+use isochor_mesh::{ElementMesh, TetMesh, Vec3, TET_FACES};
 use isochor_solvers::Energies;
 use std::collections::{BTreeMap, HashMap};
 
@@ -13,10 +14,10 @@ use std::collections::{BTreeMap, HashMap};
 #[derive(Debug, Clone, Copy)]
 pub struct ProbeInput<'a> {
     /// The rest mesh.
-    pub mesh: &'a TetMesh,
+    pub mesh: &'a ElementMesh,
     /// Positions of the state.
     pub positions: &'a [Vec3],
-    /// Pressure per tet (empty if unknown).
+    /// Pressure per element (empty if unknown).
     pub tet_pressures: &'a [f64],
     /// Constraint residual of the state's step (0 without constraints).
     pub constraint_residual: f64,
@@ -74,7 +75,8 @@ fn probe(
     let ProbeInput {
         mesh, positions: x, ..
     } = *input;
-    let rest = mesh.positions();
+    let rest = mesh.nodes();
+    let rest_volumes = || mesh.volumes_at(rest);
     Ok(match spec {
         ProbeSpec::Displacement {
             point,
@@ -96,7 +98,7 @@ fn probe(
             } else {
                 let name = selection.as_deref().unwrap_or_default();
                 let values: Vec<f64> = selections
-                    .vertices(name)?
+                    .nodes(name)?
                     .iter()
                     .map(|&v| scale * pick(x[v] - rest[v]))
                     .collect();
@@ -105,13 +107,13 @@ fn probe(
         }
         ProbeSpec::VolumeChange => mesh.total_volume_at(x) / mesh.rest_volume() - 1.0,
         ProbeSpec::VolumeRatio { selection } => {
-            let tets: Vec<usize> = match selection {
+            let elements: Vec<usize> = match selection {
                 Some(name) => selections.tets(name)?,
-                None => (0..mesh.num_tets()).collect(),
+                None => (0..mesh.num_elements()).collect(),
             };
-            let deformed: f64 = tets.iter().map(|&e| mesh.volume_at(e, x)).sum();
-            let rest: f64 = tets.iter().map(|&e| mesh.rest_volumes()[e]).sum();
-            deformed / rest
+            let (deformed, rest) = (mesh.volumes_at(x), rest_volumes());
+            let sum = |v: &[f64]| elements.iter().map(|&e| v[e]).sum::<f64>();
+            sum(&deformed) / sum(&rest)
         }
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),
@@ -144,15 +146,14 @@ fn probe(
             let kappa = input.kappa.filter(|k| *k > 0.0).ok_or_else(|| {
                 ProbeError::Message("needs the volumetric stiffness kappa of the material".into())
             })?;
-            let expected: f64 = mesh
-                .rest_volumes()
+            let expected: f64 = rest_volumes()
                 .iter()
                 .zip(p)
                 .map(|(v, p)| v * (1.0 + p / kappa))
                 .sum();
             (mesh.total_volume_at(x) - expected) / mesh.rest_volume()
         }
-        ProbeSpec::PressureCheckerboard => checkerboard(mesh, pressures(input)?),
+        ProbeSpec::PressureCheckerboard => checkerboard(mesh.corners(), pressures(input)?),
         ProbeSpec::RadiusIncrease {
             selection,
             center,
@@ -169,12 +170,12 @@ fn probe(
                 let d = p - c;
                 (d - d.dot(&a) * a).norm()
             };
-            let vertices = selections.vertices(selection)?;
-            vertices
+            let nodes = selections.nodes(selection)?;
+            nodes
                 .iter()
                 .map(|&v| radius(&x[v]) - radius(&rest[v]))
                 .sum::<f64>()
-                / vertices.len() as f64
+                / nodes.len() as f64
         }
         ProbeSpec::Energy { which } => {
             let e = input.energies;
@@ -189,13 +190,13 @@ fn probe(
 }
 
 fn pressures<'a>(input: &ProbeInput<'a>) -> Result<&'a [f64], ProbeError> {
-    if input.tet_pressures.len() == input.mesh.num_tets() {
+    if input.tet_pressures.len() == input.mesh.num_elements() {
         Ok(input.tet_pressures)
     } else {
         Err(ProbeError::Message(format!(
-            "needs one pressure per tet ({} given for {} tets)",
+            "needs one pressure per element ({} given for {} elements)",
             input.tet_pressures.len(),
-            input.mesh.num_tets()
+            input.mesh.num_elements()
         )))
     }
 }
@@ -208,8 +209,12 @@ fn reduce_values(values: &[f64], reduce: Reduce) -> f64 {
     }
 }
 
-fn volume_ratios<'a>(mesh: &'a TetMesh, x: &'a [Vec3]) -> impl Iterator<Item = f64> + 'a {
-    (0..mesh.num_tets()).map(move |e| mesh.volume_at(e, x) / mesh.rest_volumes()[e])
+fn volume_ratios(mesh: &ElementMesh, x: &[Vec3]) -> impl Iterator<Item = f64> {
+    let rest = mesh.volumes_at(mesh.nodes());
+    mesh.volumes_at(x)
+        .into_iter()
+        .zip(rest)
+        .map(|(v, v0)| v / v0)
 }
 
 /// Barycentric coordinates of `p` in rest tet `e`.
@@ -219,12 +224,15 @@ fn barycentric(mesh: &TetMesh, e: usize, p: &Vec3) -> [f64; 4] {
     [1.0 - l.x - l.y - l.z, l.x, l.y, l.z]
 }
 
-/// The displacement at rest point `p`: barycentric interpolation in the rest tet containing
-/// it (or, for a point slightly outside the mesh, the nearest tet in barycentric terms).
-pub fn displacement_at(mesh: &TetMesh, x: &[Vec3], p: &Vec3) -> Result<Vec3, String> {
+/// The displacement at rest point `p`, interpolated with the shape functions of the rest
+/// element containing it (or, for a point slightly outside the mesh, the nearest element in
+/// barycentric terms). The element is found by its corners; on a curved 10-node element the
+/// reference point then comes from Newton's method on the isoparametric map `X(xi) = p`.
+pub fn displacement_at(mesh: &ElementMesh, x: &[Vec3], p: &Vec3) -> Result<Vec3, String> {
+    let corners = mesh.corners();
     let mut best: Option<(usize, f64)> = None;
-    for e in 0..mesh.num_tets() {
-        let min = barycentric(mesh, e, p)
+    for e in 0..corners.num_tets() {
+        let min = barycentric(corners, e, p)
             .into_iter()
             .fold(f64::INFINITY, f64::min);
         if best.is_none_or(|(_, b)| min > b) {
@@ -241,10 +249,30 @@ pub fn displacement_at(mesh: &TetMesh, x: &[Vec3], p: &Vec3) -> Result<Vec3, Str
             p.x, p.y, p.z
         ));
     }
-    let t = mesh.tets()[e];
-    let w = barycentric(mesh, e, p);
-    Ok((0..4)
-        .map(|a| w[a] * (x[t[a]] - mesh.positions()[t[a]]))
+    let [_, l1, l2, l3] = barycentric(corners, e, p);
+    let kind = mesh.kind();
+    let (nodes, rest) = (mesh.element(e), mesh.nodes());
+    let n = kind.num_nodes();
+    let (mut values, mut gradients) = (vec![0.0; n], vec![Vec3::zeros(); n]);
+    let mut xi = Vec3::new(l1, l2, l3);
+    for _ in 0..20 {
+        kind.shape_values(&xi, &mut values);
+        kind.shape_gradients(&xi, &mut gradients);
+        let mapped: Vec3 = nodes.iter().zip(&values).map(|(&a, v)| *v * rest[a]).sum();
+        let jacobian = deformation_gradient(rest, nodes, &gradients);
+        let Some(step) = jacobian.try_inverse().map(|inverse| inverse * (p - mapped)) else {
+            break;
+        };
+        xi += step;
+        if step.norm() < 1e-14 {
+            break;
+        }
+    }
+    kind.shape_values(&xi, &mut values);
+    Ok(nodes
+        .iter()
+        .zip(&values)
+        .map(|(&a, v)| *v * (x[a] - rest[a]))
         .sum())
 }
 
@@ -286,8 +314,9 @@ mod tests {
     #[test]
     fn point_displacement_interpolates_linear_fields_exactly() {
         let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [8, 2, 2]).unwrap();
+        let mesh = ElementMesh::linear(mesh);
         let u = |p: &Vec3| Vec3::new(0.1 * p.y, -0.3 * p.x + 0.2 * p.z, 0.05);
-        let x: Vec<Vec3> = mesh.positions().iter().map(|p| p + u(p)).collect();
+        let x: Vec<Vec3> = mesh.nodes().iter().map(|p| p + u(p)).collect();
         for p in [
             Vec3::new(0.2, 0.025, 0.025),
             Vec3::new(0.013, 0.011, 0.049),
@@ -297,6 +326,26 @@ mod tests {
             assert!((got - u(&p)).norm() < 1e-12, "{got} vs {}", u(&p));
         }
         assert!(displacement_at(&mesh, &x, &Vec3::new(1.0, 1.0, 1.0)).is_err());
+    }
+
+    /// On curved 10-node tets (a cylinder's wall on the true surface) the probe reproduces a
+    /// quadratic displacement field exactly, at points inside curved boundary elements too.
+    #[test]
+    fn point_displacement_interpolates_quadratic_fields_on_curved_tets() {
+        use isochor_mesh::generate::{cylinder, cylinder_surface};
+        let mesh = cylinder(0.1, 0.2, 2).unwrap();
+        let mesh = ElementMesh::quadratic_on_surface(mesh, cylinder_surface(0.1)).unwrap();
+        let u = |p: &Vec3| Vec3::new(p.x * p.y, p.z * p.z - p.x, 0.3 * p.y * p.z + 0.01);
+        let x: Vec<Vec3> = mesh.nodes().iter().map(|p| p + u(p)).collect();
+        for p in [
+            Vec3::new(0.0, 0.0, 0.1),
+            Vec3::new(0.099, 0.0, 0.05),
+            Vec3::new(0.07, 0.07, 0.2),
+            Vec3::new(-0.03, 0.05, 0.13),
+        ] {
+            let got = displacement_at(&mesh, &x, &p).unwrap();
+            assert!((got - u(&p)).norm() < 1e-13, "at {p}: {got} vs {}", u(&p));
+        }
     }
 
     #[test]

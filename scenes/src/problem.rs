@@ -8,7 +8,8 @@ use crate::scene::{
 use crate::selection::Selections;
 use crate::SceneError;
 use isochor_energies::ParameterError;
-use isochor_mesh::{generate, TetMesh, Vec3, Zones};
+use isochor_mesh::element::TetElement;
+use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3, Zones};
 use isochor_solvers::{
     Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Obstacle, Problem,
     Settings, Shape, Stepping, ZonalEnergy,
@@ -28,7 +29,7 @@ pub struct Built {
 
 /// Builds the mesh, problem, stepping and settings of a scene.
 pub fn build(scene: &Scene) -> Result<Built, SceneError> {
-    let mesh = build_mesh(&scene.mesh)?;
+    let mesh = build_mesh(&scene.mesh, scene.element())?;
     let material = build_material(&scene.material)?;
     let selections = Selections::new(&mesh, &scene.selections)?;
     let dirichlet = scene
@@ -36,7 +37,7 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
         .iter()
         .map(|d| {
             Ok(Dirichlet {
-                vertices: selections.vertices(&d.selection)?,
+                nodes: selections.nodes(&d.selection)?,
                 axes: ['x', 'y', 'z'].map(|c| d.axes.contains(c)),
                 motion: motion(&d.motion),
             })
@@ -60,7 +61,7 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
     }
     let method = scene.method();
     let zones = if method == Method::Zonal {
-        Some(build_zones(scene, &mesh, &selections)?)
+        Some(build_zones(scene, mesh.corners(), &selections)?)
     } else {
         None
     };
@@ -129,32 +130,51 @@ fn vec3(a: [f64; 3]) -> Vec3 {
     Vec3::new(a[0], a[1], a[2])
 }
 
-/// Generates or reads the mesh.
-pub fn build_mesh(spec: &MeshSpec) -> Result<TetMesh, SceneError> {
-    let mesh = match spec {
+/// Generates or reads the mesh, with elements of `element`: a linear mesh (generated or read)
+/// becomes 10-node by adding mid-edge nodes, on the true surface for the curved generators
+/// (cylinder, puck, tube, ball) and at edge midpoints otherwise (a file's true surface is
+/// unknown); a 10-node file is used as it is, or reduced to its corners for `tet4`.
+pub fn build_mesh(spec: &MeshSpec, element: TetElement) -> Result<ElementMesh, SceneError> {
+    type Surface = Box<dyn Fn(&Vec3, &Vec3) -> Option<Vec3>>;
+    let (mesh, surface): (TetMesh, Option<Surface>) = match spec {
         MeshSpec::Box {
             min,
             max,
             res,
             cells,
             ..
-        } => generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))?,
+        } => (
+            generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))?,
+            None,
+        ),
         MeshSpec::Cylinder {
             radius,
             height,
             res,
-        } => generate::cylinder(*radius, *height, *res)?,
+        } => (
+            generate::cylinder(*radius, *height, *res)?,
+            Some(Box::new(generate::cylinder_surface(*radius))),
+        ),
         MeshSpec::Puck {
             radius,
             height,
             res,
-        } => generate::puck(*radius, *height, *res)?,
+        } => (
+            generate::puck(*radius, *height, *res)?,
+            Some(Box::new(generate::cylinder_surface(*radius))),
+        ),
         MeshSpec::Tube {
             inner_radius,
             outer_radius,
             height,
             res,
-        } => generate::tube(*inner_radius, *outer_radius, *height, *res)?.mesh,
+        } => (
+            generate::tube(*inner_radius, *outer_radius, *height, *res)?.mesh,
+            Some(Box::new(generate::tube_surface(
+                *inner_radius,
+                *outer_radius,
+            ))),
+        ),
         MeshSpec::Ball {
             radius,
             res,
@@ -162,23 +182,39 @@ pub fn build_mesh(spec: &MeshSpec) -> Result<TetMesh, SceneError> {
         } => {
             let ball = generate::ball(*radius, *res)?;
             let c = vec3(*center);
-            if c == Vec3::zeros() {
-                ball
-            } else {
-                let moved = ball.positions().iter().map(|x| x + c).collect();
-                TetMesh::new(moved, ball.tets().to_vec())?
-            }
+            let moved = ball.positions().iter().map(|x| x + c).collect();
+            let sphere = generate::ball_surface(*radius);
+            (
+                TetMesh::new(moved, ball.tets().to_vec())?,
+                Some(Box::new(move |a: &Vec3, b: &Vec3| {
+                    sphere(&(a - c), &(b - c)).map(|p| p + c)
+                })),
+            )
         }
-        MeshSpec::Explicit { positions, tets } => {
-            TetMesh::new(positions.iter().map(|p| vec3(*p)).collect(), tets.clone())?
+        MeshSpec::Explicit { positions, tets } => (
+            TetMesh::new(positions.iter().map(|p| vec3(*p)).collect(), tets.clone())?,
+            None,
+        ),
+        MeshSpec::File { path } => {
+            let read = read_mesh_file(path)?;
+            return Ok(match (element, read.kind()) {
+                (TetElement::Tet4, TetElement::Tet10) => ElementMesh::linear(read.into_corners()),
+                (TetElement::Tet10, TetElement::Tet4) => {
+                    ElementMesh::quadratic(read.into_corners())
+                }
+                _ => read,
+            });
         }
-        MeshSpec::File { path } => read_mesh_file(path)?,
     };
-    Ok(mesh)
+    Ok(match (element, surface) {
+        (TetElement::Tet4, _) => ElementMesh::linear(mesh),
+        (TetElement::Tet10, None) => ElementMesh::quadratic(mesh),
+        (TetElement::Tet10, Some(surface)) => ElementMesh::quadratic_on_surface(mesh, surface)?,
+    })
 }
 
-/// Reads a mesh file by its extension.
-pub fn read_mesh_file(path: &Path) -> Result<TetMesh, SceneError> {
+/// Reads a mesh file of 4- or 10-node tets by its extension.
+pub fn read_mesh_file(path: &Path) -> Result<ElementMesh, SceneError> {
     const VALID: &str = ".msh (Gmsh), .node/.ele (TetGen), .vtu";
     let ext = path
         .extension()
@@ -209,7 +245,7 @@ pub fn read_mesh_file(path: &Path) -> Result<TetMesh, SceneError> {
         }
         _ => check(path)?,
     }
-    Ok(isochor_mesh::io::read_mesh(path)?)
+    Ok(isochor_mesh::io::read_mesh_elements(path)?)
 }
 
 /// Material parameters from a scene's `[material]` table.

@@ -63,11 +63,15 @@ pub struct RunResult {
     pub variant: Option<String>,
     /// Method name.
     pub method: String,
+    /// Element name: `"tet4"` or `"tet10"`.
+    pub element: String,
     /// Poisson's ratio.
     pub nu: f64,
-    /// Mesh vertices.
+    /// Mesh vertices (element corners).
     pub vertices: usize,
-    /// Mesh tets.
+    /// Mesh nodes: the vertices plus, for `tet10`, the mid-edge nodes.
+    pub nodes: usize,
+    /// Mesh elements (tets).
     pub tets: usize,
     /// Free displacement DOFs plus pressure/multiplier unknowns.
     pub dofs: usize,

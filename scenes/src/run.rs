@@ -39,16 +39,16 @@ pub fn run_scene(
     let material = built.problem.material;
     let kappa = material.mixed_kappa().ok();
     let zone_ids = match &built.problem.zones {
-        Some(z) => Some(z.tet_zone_ids(mesh.num_tets())?),
+        Some(z) => Some(z.tet_zone_ids(mesh.num_elements())?),
         None => None,
     };
     // Probes are checked on the rest state first, so that a bad probe fails before the run.
-    let zeros = vec![0.0; mesh.num_tets()];
+    let zeros = vec![0.0; mesh.num_elements()];
     probes::evaluate(
         scene,
         &ProbeInput {
             mesh: &mesh,
-            positions: mesh.positions(),
+            positions: mesh.nodes(),
             tet_pressures: &zeros,
             constraint_residual: 0.0,
             energies: Energies::default(),
@@ -63,7 +63,7 @@ pub fn run_scene(
     let mut frames = match (&out, scene.output.vtu) {
         (Some(dir), true) => {
             let mut w = FrameWriter::new(dir.path(), "frame", scene.output.every, zone_ids);
-            w.write(&mesh, 0, 0.0, mesh.positions(), &zeros, &[])?;
+            w.write(&mesh, 0, 0.0, mesh.nodes(), &zeros, &[])?;
             Some(w)
         }
         _ => None,
@@ -162,9 +162,11 @@ pub fn run_scene(
         scene: scene.name.clone(),
         variant: options.variant.clone(),
         method: scene.method().name().to_string(),
+        element: scene.element().name().to_string(),
         nu: scene.material.nu,
         vertices: mesh.num_vertices(),
-        tets: mesh.num_tets(),
+        nodes: mesh.num_nodes(),
+        tets: mesh.num_elements(),
         dofs,
         steps: history.len(),
         steps_requested: total,
@@ -197,7 +199,7 @@ pub fn run_scene(
 
 /// The record of one step: its iterations and the state it ended in.
 fn record(
-    mesh: &isochor_mesh::TetMesh,
+    mesh: &isochor_mesh::ElementMesh,
     state: &State,
     report: &StepReport,
     inverted_tets: usize,

@@ -7,6 +7,7 @@
 //! and named variants (sets of `--set` overrides that reproduce a figure's columns).
 
 use crate::SceneError;
+use isochor_mesh::element::TetElement;
 use isochor_solvers::Method;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -23,6 +24,9 @@ pub struct Scene {
     pub description: String,
     /// The method (see [`Method::ALL`] for the names).
     pub method: MethodName,
+    /// The element: `"tet4"` (default) or `"tet10"`, orthogonal to the method.
+    #[serde(default)]
+    pub element: ElementName,
     /// The mesh.
     pub mesh: MeshSpec,
     /// Material parameters.
@@ -75,6 +79,33 @@ impl TryFrom<String> for MethodName {
 impl From<MethodName> for String {
     fn from(m: MethodName) -> String {
         m.0.name().to_string()
+    }
+}
+
+/// An element name, `"tet4"` or `"tet10"`, checked while parsing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(try_from = "String", into = "String")]
+pub struct ElementName(pub TetElement);
+
+impl Default for ElementName {
+    fn default() -> Self {
+        ElementName(TetElement::Tet4)
+    }
+}
+
+impl TryFrom<String> for ElementName {
+    type Error = String;
+    fn try_from(s: String) -> Result<Self, String> {
+        TetElement::from_name(&s).map(ElementName).ok_or_else(|| {
+            let valid: Vec<&str> = TetElement::ALL.iter().map(|e| e.name()).collect();
+            format!("unknown element '{s}' (valid: {})", valid.join(", "))
+        })
+    }
+}
+
+impl From<ElementName> for String {
+    fn from(e: ElementName) -> String {
+        e.0.name().to_string()
     }
 }
 
@@ -605,6 +636,11 @@ impl Scene {
     /// The method.
     pub fn method(&self) -> Method {
         self.method.0
+    }
+
+    /// The element.
+    pub fn element(&self) -> TetElement {
+        self.element.0
     }
 
     /// The stepping's number of steps or frames.

@@ -1,15 +1,19 @@
 //! Scene selections resolved on a mesh: a [`SelectionSpec`] becomes an
 //! [`isochor_mesh::Region`] (the intersection of its primitives, padded by a tolerance), which
-//! then selects vertices, boundary faces (all three vertices inside) or tets (centroid inside).
-//! Everything is geometric, so a selection applies to any mesh of the same shape.
+//! then selects nodes (vertices, and on a 10-node mesh the mid-edge nodes inside), boundary
+//! faces (all three corners inside) or elements (corner centroid inside). Everything is
+//! geometric, so a selection applies to any mesh of the same shape and element.
 
 use crate::scene::SelectionSpec;
 use crate::SceneError;
-use isochor_mesh::{BoundarySurface, FaceSelection, Region, TetMesh, Vec3, VertexSelection};
+use isochor_mesh::{
+    BoundarySurface, ElementMesh, FaceSelection, Region, TetMesh, Vec3, VertexSelection,
+};
 use std::collections::BTreeMap;
 
 /// The selections of a scene on one mesh, with the boundary surface they share.
 pub struct Selections<'a> {
+    elements: &'a ElementMesh,
     mesh: &'a TetMesh,
     specs: &'a BTreeMap<String, SelectionSpec>,
     surface: BoundarySurface,
@@ -17,13 +21,15 @@ pub struct Selections<'a> {
 }
 
 impl<'a> Selections<'a> {
-    /// Prepares the selections of `specs` on `mesh`.
+    /// Prepares the selections of `specs` on `elements`.
     pub fn new(
-        mesh: &'a TetMesh,
+        elements: &'a ElementMesh,
         specs: &'a BTreeMap<String, SelectionSpec>,
     ) -> Result<Self, SceneError> {
+        let mesh = elements.corners();
         let (lo, hi) = mesh.bounding_box();
         Ok(Selections {
+            elements,
             mesh,
             specs,
             surface: mesh.boundary()?,
@@ -58,6 +64,40 @@ impl<'a> Selections<'a> {
             name: name.to_string(),
             message: format!("selects no {what} of this mesh (check its coordinates against the mesh's bounding box)"),
         }
+    }
+
+    /// The selected nodes (sorted, never empty): the selected vertices, then on a 10-node
+    /// mesh the mid-edge nodes inside the region (on the boundary, for a surface selection)
+    /// whose edge joins two selected vertices, so that a held face holds its whole quadratic
+    /// faces.
+    pub fn nodes(&self, name: &str) -> Result<Vec<usize>, SceneError> {
+        let vertices = self.vertices(name)?;
+        let region = self.region(name)?;
+        let nv = self.mesh.num_vertices();
+        let mut selected = vec![false; nv];
+        vertices.iter().for_each(|&v| selected[v] = true);
+        let on_surface = if self.spec(name)?.surface && !self.elements.mid_edges().is_empty() {
+            Some(self.elements.boundary()?.nodes())
+        } else {
+            None
+        };
+        let x = self.elements.nodes();
+        let mid = self
+            .elements
+            .mid_edges()
+            .iter()
+            .enumerate()
+            .map(|(i, edge)| (nv + i, edge))
+            .filter(|&(node, &[a, b])| {
+                selected[a]
+                    && selected[b]
+                    && region.contains(&x[node])
+                    && on_surface
+                        .as_ref()
+                        .is_none_or(|s| s.binary_search(&node).is_ok())
+            })
+            .map(|(node, _)| node);
+        Ok(vertices.iter().copied().chain(mid).collect())
     }
 
     /// The selected vertices (sorted, never empty).
@@ -218,10 +258,12 @@ mod tests {
 
     #[test]
     fn selections_pick_vertices_faces_and_tets() {
-        let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap();
+        let mesh =
+            ElementMesh::linear(box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap());
         let specs = specs();
         let s = Selections::new(&mesh, &specs).unwrap();
         assert_eq!(s.vertices("left").unwrap().len(), 9);
+        assert_eq!(s.nodes("left").unwrap(), s.vertices("left").unwrap());
         assert_eq!(s.faces("left").unwrap().len(), 8);
         // The corner column: the vertices on the z axis.
         assert_eq!(s.vertices("corner").unwrap().len(), 3);
@@ -233,5 +275,21 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("defined: corner, left, nowhere"));
+    }
+
+    /// On 10-node tets a plane selection holds every node of its quadratic faces: the 9
+    /// vertices of the x = 0 face of a 2x2x2 box, the 12 mid-edge nodes of its grid edges
+    /// and the 4 of its face diagonals; the corner column gets the 2 mid-edge nodes between
+    /// its 3 vertices.
+    #[test]
+    fn selections_on_quadratic_tets_include_the_mid_edge_nodes() {
+        let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap();
+        let mesh = ElementMesh::quadratic(mesh);
+        let specs = specs();
+        let s = Selections::new(&mesh, &specs).unwrap();
+        let left = s.nodes("left").unwrap();
+        assert_eq!(left.len(), 25);
+        assert!(left.iter().all(|&n| mesh.nodes()[n].x.abs() < 1e-12));
+        assert_eq!(s.nodes("corner").unwrap().len(), 5);
     }
 }

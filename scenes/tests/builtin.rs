@@ -66,13 +66,13 @@ fn every_builtin_scene_parses_and_builds_a_problem() {
         assert!(!scene.description.is_empty(), "{name} has no description");
         assert!(!scene.probes.is_empty(), "{name} has no probes");
         let built = build(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert!(built.problem.mesh.num_tets() > 0);
+        assert!(built.problem.mesh.num_elements() > 0);
         assert!(
             !built.problem.dirichlet.is_empty() || !built.problem.obstacles.is_empty(),
             "{name} has no Dirichlet condition or obstacle"
         );
         for d in &built.problem.dirichlet {
-            assert!(!d.vertices.is_empty());
+            assert!(!d.nodes.is_empty());
         }
         assert_eq!(built.problem.method, scene.method());
         assert_eq!(
@@ -89,7 +89,7 @@ fn default_sizes_match_the_papers() {
             .unwrap()
             .problem
             .mesh
-            .num_tets()
+            .num_elements()
     };
     assert_eq!(tets("cantilever"), 6 * 8 * 2 * 2);
     assert_eq!(tets("compressed-block"), 6 * 8 * 8 * 8);

@@ -38,7 +38,7 @@ fn iterative(s: &Built) -> Option<(f64, usize)> {
 }
 
 fn k_ring(b: &Built, k: usize) -> bool {
-    b.problem.zones == Some(Zones::k_ring_cover(&b.problem.mesh, k).unwrap())
+    b.problem.zones == Some(Zones::k_ring_cover(b.problem.mesh.corners(), k).unwrap())
 }
 
 fn epidermis(b: &Built) -> Option<Epidermis> {
@@ -53,6 +53,14 @@ const CASES: &[Case] = &[
         value: "standard",
         reached: |_, b| b.problem.method == Method::Standard,
         bad: "newton",
+    },
+    Case {
+        key: "element",
+        scene: STATIC,
+        setup: &[],
+        value: "tet10",
+        reached: |_, b| b.problem.mesh.kind() == isochor_mesh::element::TetElement::Tet10,
+        bad: "hex8",
     },
     Case {
         key: "nu",

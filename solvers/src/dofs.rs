@@ -19,14 +19,14 @@ pub struct Dofs {
 }
 
 impl Dofs {
-    /// DOFs of `num_vertices` vertices under `conditions`.
-    pub fn new(num_vertices: usize, conditions: &[Dirichlet]) -> Result<Self, SolverError> {
-        let mut driver = vec![FIXED; 3 * num_vertices];
+    /// DOFs of `num_nodes` nodes under `conditions`.
+    pub fn new(num_nodes: usize, conditions: &[Dirichlet]) -> Result<Self, SolverError> {
+        let mut driver = vec![FIXED; 3 * num_nodes];
         for (c, condition) in conditions.iter().enumerate() {
-            for &v in &condition.vertices {
-                if v >= num_vertices {
+            for &v in &condition.nodes {
+                if v >= num_nodes {
                     return Err(SolverError::InvalidProblem(format!(
-                        "Dirichlet condition {c} names vertex {v}, but the mesh has {num_vertices} vertices"
+                        "Dirichlet condition {c} names node {v}, but the mesh has {num_nodes} nodes"
                     )));
                 }
                 for (k, &on) in condition.axes.iter().enumerate() {
@@ -36,7 +36,7 @@ impl Dofs {
                 }
             }
         }
-        let mut free_index = vec![FIXED; 3 * num_vertices];
+        let mut free_index = vec![FIXED; 3 * num_nodes];
         let mut free = Vec::new();
         let mut prescribed = Vec::new();
         for (dof, &c) in driver.iter().enumerate() {

@@ -2,17 +2,19 @@
 //! loads it lists, the constraint set of a mixed or zonal method, the lumped masses.
 
 use crate::terms::{
-    AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure,
+    AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces,
+    FollowerPressure,
 };
 use crate::{Dofs, Load, Method, Problem, SolverError, ZonalEnergy};
 use isochor_constraints::{
-    Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance, NodalConstraints,
-    ZonalConstraints,
+    exact_rule, Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance,
+    NodalConstraints, ZonalConstraints,
 };
 use isochor_energies::{
     constrained_neo_hookean, standard_neo_hookean, DistortionalNeoHookean, Epidermis, Hyperelastic,
 };
-use isochor_mesh::{BoundarySurface, TetMesh, Vec3, Zones};
+use isochor_mesh::element::{RestGeometry, TetQuadrature};
+use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
 
 /// How the nonlinear problem is solved.
@@ -31,7 +33,9 @@ pub enum Strategy {
 /// The terms, constraints and DOFs of one problem.
 #[derive(Debug)]
 pub struct Model {
-    pub mesh: TetMesh,
+    pub mesh: ElementMesh,
+    /// The rest geometry at each element's centroid (one-point rule), for element outputs.
+    pub centroids: RestGeometry,
     pub method: Method,
     pub strategy: Strategy,
     pub terms: Vec<Box<dyn EnergyTerm>>,
@@ -46,23 +50,13 @@ pub struct Model {
     /// For the zonal method, the penalty stiffness and its derivative for output pressures.
     pub elastic_material: Arc<dyn Hyperelastic>,
     pub dofs: Dofs,
+    /// Lumped (HRZ, positive) node masses.
     pub masses: Vec<f64>,
     mu: f64,
 }
 
 /// Contact penalty relative to the vertex stiffness (see [`Model::set_contact_stiffness`]).
 const CONTACT_PENALTY: f64 = 100.0;
-
-/// Lumped vertex masses `rho sum_e V_e / 4`.
-pub fn lumped_masses(mesh: &TetMesh, density: f64) -> Vec<f64> {
-    let mut m = vec![0.0; mesh.num_vertices()];
-    for (t, v) in mesh.tets().iter().zip(mesh.rest_volumes()) {
-        for &i in t {
-            m[i] += density * v / 4.0;
-        }
-    }
-    m
-}
 
 /// The rest volume measured by each row of `constraints`: by Euler's theorem for the
 /// degree-3 homogeneous volume, `(G(X) X)_i = 3 V_i` for both the linear and the
@@ -109,8 +103,9 @@ impl Model {
             obstacle.validate()?;
         }
         material.validate()?;
-        let dofs = Dofs::new(mesh.num_vertices(), &dirichlet)?;
-        let masses = lumped_masses(&mesh, material.density);
+        let dofs = Dofs::new(mesh.num_nodes(), &dirichlet)?;
+        let density = material.density;
+        let masses: Vec<f64> = mesh.lumped_volumes().iter().map(|v| density * v).collect();
         let mu = material.mu;
         let unsupported = |reason| SolverError::Unsupported {
             method: method.name(),
@@ -133,20 +128,28 @@ impl Model {
         };
 
         let kappa = || material.mixed_kappa();
-        let nodal = |measure, compliance| -> Result<NodalConstraints, SolverError> {
-            Ok(NodalConstraints::new(&mesh, measure, kappa()?, compliance)?)
+        let rule = exact_rule(mesh.kind());
+        let nodal = |measure, kappa, compliance| -> Result<NodalConstraints, SolverError> {
+            Ok(NodalConstraints::on_elements(
+                &mesh, rule, measure, kappa, compliance,
+            )?)
         };
         let mut constraints: Option<Arc<dyn ConstraintSet>> = None;
         let mut augmented = None;
         let strategy = match method {
             Method::Standard => Strategy::Minimize,
             Method::MixedP1 => {
-                constraints = Some(Arc::new(nodal(Measure::Linear, material.nodal_compliance)?));
+                constraints = Some(Arc::new(nodal(
+                    Measure::Linear,
+                    kappa()?,
+                    material.nodal_compliance,
+                )?));
                 Strategy::SaddleDirect
             }
             Method::MixedP1Log => {
                 constraints = Some(Arc::new(nodal(
                     Measure::Logarithmic,
+                    kappa()?,
                     material.nodal_compliance,
                 )?));
                 Strategy::SaddleDirect
@@ -163,7 +166,12 @@ impl Model {
                 } else {
                     Measure::Logarithmic
                 };
-                constraints = Some(Arc::new(ElementConstraints::new(&mesh, measure, kappa()?)?));
+                constraints = Some(Arc::new(ElementConstraints::on_elements(
+                    &mesh,
+                    rule,
+                    measure,
+                    kappa()?,
+                )?));
                 Strategy::SaddleDirect
             }
             Method::Condensed => {
@@ -173,7 +181,7 @@ impl Model {
                     ));
                 }
                 let set: Arc<dyn ConstraintSet> =
-                    Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
+                    Arc::new(nodal(Measure::Linear, kappa()?, NodalCompliance::Lumped)?);
                 let c = diagonal(set.compliance())?;
                 let stiffness = c.iter().map(|ci| 1.0 / ci).collect();
                 let zero = vec![0.0; c.len()];
@@ -182,16 +190,12 @@ impl Model {
             }
             Method::Dual => {
                 let set: Arc<dyn ConstraintSet> =
-                    Arc::new(nodal(Measure::Linear, NodalCompliance::Lumped)?);
+                    Arc::new(nodal(Measure::Linear, kappa()?, NodalCompliance::Lumped)?);
                 let c = diagonal(set.compliance())?;
                 let stiffness = match material.dual_base_nu {
                     Some(nu) => {
-                        let base = NodalConstraints::new(
-                            &mesh,
-                            Measure::Linear,
-                            isochor_energies::bulk_modulus(material.young(), nu)?,
-                            NodalCompliance::Lumped,
-                        )?;
+                        let base_kappa = isochor_energies::bulk_modulus(material.young(), nu)?;
+                        let base = nodal(Measure::Linear, base_kappa, NodalCompliance::Lumped)?;
                         diagonal(base.compliance())?
                             .iter()
                             .map(|ci| 1.0 / ci)
@@ -204,8 +208,10 @@ impl Model {
                 Strategy::Dual
             }
             Method::Zonal => {
-                let zones = zones.unwrap_or_else(|| Zones::global(&mesh));
-                constraints = Some(Arc::new(ZonalConstraints::new(&mesh, &zones)?));
+                let zones = zones.unwrap_or_else(|| Zones::global(mesh.corners()));
+                constraints = Some(Arc::new(ZonalConstraints::on_elements(
+                    &mesh, rule, &zones,
+                )?));
                 Strategy::SaddleSchur
             }
         };
@@ -214,36 +220,44 @@ impl Model {
             &mesh,
             elastic.clone(),
             project_hessians,
-        ))];
+        )?)];
         if let Some(skin) = material.epidermis {
             let skin = Epidermis::from_young_poisson(skin.young, skin.poisson, skin.gamma)?;
             terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
         }
         for load in loads {
             terms.push(match load {
-                Load::Gravity(g) => Box::new(DeadLoad::gravity(&masses, g)),
-                Load::Traction { faces, traction } => {
-                    Box::new(DeadLoad::traction(mesh.positions(), &faces, traction))
+                Load::Gravity(g) => {
+                    let weights: Vec<f64> =
+                        mesh.node_volumes().iter().map(|v| density * v).collect();
+                    Box::new(DeadLoad::gravity(&weights, g))
                 }
+                Load::Traction { faces, traction } => Box::new(DeadLoad::traction(
+                    mesh.nodes(),
+                    &Faces::new(&mesh, &faces)?,
+                    traction,
+                )),
                 Load::Pressure { faces, pressure } => {
-                    Box::new(FollowerPressure::new(faces, pressure))
+                    Box::new(FollowerPressure::new(Faces::new(&mesh, &faces)?, pressure))
                 }
             });
         }
         let rows = constraints
             .as_deref()
             .or(augmented.as_ref().map(|a| a.constraints()))
-            .map(|c| row_volumes(c, mesh.positions()))
+            .map(|c| row_volumes(c, mesh.nodes()))
             .transpose()?
             .unwrap_or_default();
         let contact = (!obstacles.is_empty())
             .then(|| -> Result<Contact, SolverError> {
-                let vertices = BoundarySurface::new(&mesh)?.vertices().to_vec();
-                Ok(Contact::new(vertices, obstacles, Vec::new()))
+                let nodes = mesh.boundary()?.nodes();
+                Ok(Contact::new(nodes, obstacles, Vec::new()))
             })
             .transpose()?;
+        let centroids = mesh.rest_geometry(TetQuadrature::Degree1)?;
         let mut model = Model {
             mesh,
+            centroids,
             method,
             strategy,
             terms,
@@ -267,7 +281,8 @@ impl Model {
     /// the penetration by orders of magnitude, small enough to keep the Newton matrices well
     /// conditioned next to the volumetric stiffness (`lambda h` up to `1e4 mu h`).
     pub fn set_contact_stiffness(&mut self, dt: Option<f64>) {
-        let h = (6.0 * self.mesh.rest_volume() / self.mesh.num_tets().max(1) as f64).cbrt();
+        let corners = self.mesh.corners();
+        let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
         let elastic = self.mu * h;
         if let Some(contact) = &mut self.contact {
             let stiffness = contact

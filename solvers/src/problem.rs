@@ -5,7 +5,7 @@
 use crate::SolverError;
 use isochor_constraints::NodalCompliance;
 use isochor_energies::{bulk_modulus, Lame, ParameterError};
-use isochor_mesh::{TetMesh, Vec3, Zones};
+use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::fmt;
 use std::str::FromStr;
 
@@ -305,11 +305,11 @@ impl Motion {
     }
 }
 
-/// A Dirichlet condition: the listed components of the listed vertices follow `motion`.
+/// A Dirichlet condition: the listed components of the listed nodes follow `motion`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dirichlet {
-    /// Vertex indices.
-    pub vertices: Vec<usize>,
+    /// Node indices (on a 10-node mesh, include the mid-edge nodes of the held region).
+    pub nodes: Vec<usize>,
     /// Which components (x, y, z) are prescribed.
     pub axes: [bool; 3],
     /// How they move.
@@ -319,9 +319,10 @@ pub struct Dirichlet {
 /// An external load, ramped by the load parameter in quasi-static stepping.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Load {
-    /// Body force `rho g` per unit rest volume, lumped to the vertices.
+    /// Body force `rho g` per unit rest volume, as consistent nodal forces.
     Gravity(Vec3),
-    /// Dead traction (force per unit rest area) on boundary faces.
+    /// Dead traction (force per unit rest area) on boundary faces, given by their corner
+    /// triangles (on a 10-node mesh, the 6-node faces over them are loaded).
     Traction {
         faces: Vec<[usize; 3]>,
         traction: Vec3,
@@ -338,8 +339,9 @@ pub enum Load {
 /// Everything a simulation needs.
 #[derive(Debug, Clone)]
 pub struct Problem {
-    /// The mesh in its rest configuration.
-    pub mesh: TetMesh,
+    /// The mesh in its rest configuration: 4- or 10-node tets (a [`isochor_mesh::TetMesh`]
+    /// converts into the 4-node one with `.into()`).
+    pub mesh: ElementMesh,
     /// The method.
     pub method: Method,
     /// Material parameters.
@@ -350,7 +352,7 @@ pub struct Problem {
     pub dirichlet: Vec<Dirichlet>,
     /// External loads.
     pub loads: Vec<Load>,
-    /// Rigid obstacles the surface vertices may not enter (frictionless contact).
+    /// Rigid obstacles the surface nodes may not enter (frictionless contact).
     pub obstacles: Vec<Obstacle>,
 }
 

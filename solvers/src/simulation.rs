@@ -9,8 +9,9 @@ use crate::system::System;
 use crate::terms::Inertia;
 use crate::{Method, Problem, Settings, SolverError, StepReport};
 use faer::sparse::SparseColMat;
-use isochor_energies::{tet, Hyperelastic};
-use isochor_mesh::{TetMesh, Vec3};
+
+use isochor_mesh::element::deformation_gradient;
+use isochor_mesh::{ElementMesh, Vec3};
 use nalgebra::DMatrix;
 use std::time::{Duration, Instant};
 
@@ -196,12 +197,12 @@ impl Linearizer<'_> {
     /// the Hessian of its primal problem (eq. 39) at the multipliers of `trial`.
     pub fn newton_system(&mut self, trial: &State) -> Result<NewtonSystem, SolverError> {
         let model = self.system.model;
-        if trial.positions.len() != model.mesh.num_vertices()
+        if trial.positions.len() != model.mesh.num_nodes()
             || trial.multipliers.len() != self.multipliers
         {
             return Err(SolverError::InvalidProblem(format!(
                 "a trial state needs {} positions and {} multipliers",
-                model.mesh.num_vertices(),
+                model.mesh.num_nodes(),
                 self.multipliers
             )));
         }
@@ -253,10 +254,10 @@ impl Simulation {
                 "the dual solver reuses the primal factorization (eq. 41): use the direct linear solver".into(),
             ));
         }
-        let n = model.mesh.num_vertices();
+        let n = model.mesh.num_nodes();
         let m = model.row_volumes.len();
         let state = State {
-            positions: model.mesh.positions().to_vec(),
+            positions: model.mesh.nodes().to_vec(),
             velocities: vec![Vec3::zeros(); n],
             multipliers: vec![
                 0.0;
@@ -268,7 +269,7 @@ impl Simulation {
             ],
             t: 0.0,
         };
-        let rest = model.mesh.positions();
+        let rest = model.mesh.nodes();
         let rest_external = model
             .terms
             .iter()
@@ -284,7 +285,7 @@ impl Simulation {
     }
 
     /// The mesh in its rest configuration.
-    pub fn mesh(&self) -> &TetMesh {
+    pub fn mesh(&self) -> &ElementMesh {
         &self.model.mesh
     }
 
@@ -311,14 +312,14 @@ impl Simulation {
     /// The force scale tolerances are relative to: the larger of the external load's norm
     /// at full load and `mu h^2 sqrt(n)` (a unit strain's nodal force over the mesh).
     pub fn force_scale(&self) -> Result<f64, SolverError> {
-        let x = self.model.mesh.positions();
+        let x = self.model.mesh.nodes();
         let mut external = vec![0.0; 3 * x.len()];
         for term in self.model.terms.iter().filter(|t| t.is_external()) {
             term.evaluate(x, 1.0, Some(&mut external), None)?;
         }
-        let mesh = &self.model.mesh;
+        let mesh = self.model.mesh.corners();
         let h2 = (mesh.rest_volume() / mesh.num_tets() as f64).powf(2.0 / 3.0);
-        let elastic = self.model.mu() * h2 * (mesh.num_vertices() as f64).sqrt();
+        let elastic = self.model.mu() * h2 * (self.model.mesh.num_nodes() as f64).sqrt();
         Ok(norm(&self.model.dofs.gather(&external)).max(elastic))
     }
 
@@ -334,9 +335,8 @@ impl Simulation {
             }
             _ => None,
         };
-        let material_pressure =
-            |e: usize| mean_stress(self.model.elastic_material.as_ref(), &self.model.mesh, e, x);
-        (0..self.model.mesh.num_tets())
+        let material_pressure = |e: usize| mean_stress(&self.model, e, x);
+        (0..self.model.mesh.num_elements())
             .map(|e| match (&constrained, self.model.method) {
                 (None, _) => material_pressure(e),
                 (Some(p), Method::Zonal) => p[e] + material_pressure(e),
@@ -451,7 +451,7 @@ impl Simulation {
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
         };
         self.model.set_contact_stiffness(dt);
-        let (lo, hi) = self.model.mesh.bounding_box();
+        let (lo, hi) = self.model.mesh.corners().bounding_box();
         let contact_tolerance = self.settings.contact_tolerance * (hi - lo).norm();
         let (mut system, mut solver) = match setup(&self.model, self.settings, dt) {
             Ok(s) => s,
@@ -603,21 +603,19 @@ fn step_target(
     };
     let target = StepTarget {
         load,
-        prescribed: model
-            .dofs
-            .targets(model.mesh.positions(), fraction)
-            .collect(),
+        prescribed: model.dofs.targets(model.mesh.nodes(), fraction).collect(),
         force_tolerance,
     };
     (fraction, t, target)
 }
 
-/// Mean Cauchy stress `tr(P F^T) / (3 J)` of tet `e` (NaN where the energy is undefined).
-fn mean_stress(material: &dyn Hyperelastic, mesh: &TetMesh, e: usize, x: &[Vec3]) -> f64 {
-    let xe = mesh.tets()[e].map(|i| x[i]);
-    let f = tet::deformation_gradient(&xe, &mesh.inverse_rest_shapes()[e]);
+/// Mean Cauchy stress `tr(P F^T) / (3 J)` of the model's material at the centroid of element
+/// `e` (NaN where the energy is undefined).
+fn mean_stress(model: &Model, e: usize, x: &[Vec3]) -> f64 {
+    let f = deformation_gradient(x, model.mesh.element(e), model.centroids.gradients(e, 0));
     let j = f.determinant();
-    material
+    model
+        .elastic_material
         .pk1(&f)
         .map(|p| (p * f.transpose()).trace() / (3.0 * j))
         .unwrap_or(f64::NAN)

@@ -26,12 +26,12 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
     let mesh = box_grid(Vec3::zeros(), size, cells).unwrap();
     let clamped = plane(&mesh, 0, 0.0);
     Problem {
-        mesh,
+        mesh: mesh.into(),
         method,
         material: Material::from_young_poisson(266e3, nu, 1070.0).unwrap(),
         zones: None,
         dirichlet: vec![Dirichlet {
-            vertices: clamped,
+            nodes: clamped,
             axes: [true; 3],
             motion: Motion::Fixed,
         }],

@@ -62,7 +62,7 @@ fn final_pairs(
     obstacles: &[Obstacle],
     x: &[Vec3],
 ) -> Vec<(usize, usize, f64, f64)> {
-    let candidates = BoundarySurface::new(sim.mesh())
+    let candidates = BoundarySurface::new(sim.mesh().corners())
         .unwrap()
         .vertices()
         .to_vec();
@@ -98,12 +98,12 @@ fn resting_block_at(method: Method, nu: f64, z0: f64) -> Problem {
     let mesh = box_grid(base, base + Vec3::repeat(0.1), [3, 3, 3]).unwrap();
     let bottom = plane(&mesh, 2, z0);
     Problem {
-        mesh,
+        mesh: mesh.into(),
         method,
         material: Material::from_young_poisson(100e3, nu, 1000.0).unwrap(),
         zones: None,
         dirichlet: vec![Dirichlet {
-            vertices: bottom,
+            nodes: bottom,
             axes: [true, true, false],
             motion: Motion::Fixed,
         }],
@@ -128,7 +128,7 @@ fn resting_block_carries_its_weight_without_penetrating() {
         let problem = resting_block(method, nu);
         let obstacles = problem.obstacles.clone();
         let weight = G * 1000.0 * problem.mesh.rest_volume();
-        let tol = tolerance(&problem.mesh);
+        let tol = tolerance(problem.mesh.corners());
         let mut sim = Simulation::new(problem, Settings::default()).unwrap();
         let scale = sim.force_scale().unwrap();
         let summary = sim
@@ -214,12 +214,12 @@ fn receding_ground_releases_every_contact() {
     };
     let top = plane(&mesh, 2, 0.1);
     let problem = Problem {
-        mesh,
+        mesh: mesh.into(),
         method: Method::Standard,
         material: Material::from_young_poisson(100e3, 0.45, 1000.0).unwrap(),
         zones: None,
         dirichlet: vec![Dirichlet {
-            vertices: top,
+            nodes: top,
             axes: [true; 3],
             motion: Motion::Fixed,
         }],
@@ -260,7 +260,7 @@ fn dropped_ball(res: usize, method: Method, mu: f64, nu: f64, gap: f64) -> Probl
     .unwrap();
     let young = 2.0 * mu * (1.0 + nu);
     Problem {
-        mesh,
+        mesh: mesh.into(),
         method,
         material: Material::from_young_poisson(young, nu, 1000.0).unwrap(),
         zones: None,
@@ -274,7 +274,7 @@ fn dropped_ball(res: usize, method: Method, mu: f64, nu: f64, gap: f64) -> Probl
 fn dropped_ball_bounces_and_releases_every_contact() {
     // Stiffer than the scene's 16 kPa so that the coarse ball lets go within 120 frames.
     let problem = dropped_ball(2, Method::Standard, 160e3, 0.45, 0.01);
-    let tol = tolerance(&problem.mesh);
+    let tol = tolerance(problem.mesh.corners());
     let masses = 1000.0 * problem.mesh.rest_volume();
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let mut first_contact = None;
@@ -314,7 +314,7 @@ fn dropped_ball_bounces_and_releases_every_contact() {
 #[test]
 fn zonal_keeps_the_volume_through_the_impact() {
     let problem = dropped_ball(2, Method::Zonal, 16e3, 0.45, 0.001);
-    let mesh = problem.mesh.clone();
+    let mesh = problem.mesh.corners().clone();
     let rest = mesh.rest_volume();
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let mut worst: f64 = 0.0;
@@ -344,7 +344,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
     let mesh = box_grid(Vec3::zeros(), Vec3::repeat(0.1), [4, 4, 4]).unwrap();
     let tol = tolerance(&mesh);
     let hold = |axis: usize, value: f64| Dirichlet {
-        vertices: plane(&mesh, axis, value),
+        nodes: plane(&mesh, axis, value),
         axes: [axis == 0, axis == 1, false],
         motion: Motion::Fixed,
     };
@@ -359,7 +359,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
     };
     let obstacles = vec![cylinder(-0.05, 0.01), cylinder(0.15, -0.01)];
     let problem = Problem {
-        mesh,
+        mesh: mesh.into(),
         method: Method::MixedP1,
         material: Material::from_young_poisson(100e3, 0.5, 1000.0).unwrap(),
         zones: None,
@@ -388,7 +388,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         last.contact.force
     );
     // Under the cylinders' lowest and highest lines, the cube is 80 mm thick.
-    let rest = sim.mesh().positions();
+    let rest = sim.mesh().nodes();
     let middle: Vec<f64> = (0..x.len())
         .filter(|&v| (rest[v].x - 0.05).abs() < 1e-9)
         .map(|v| x[v].z)

@@ -35,7 +35,7 @@ fn relative_difference(rest: &[Vec3], a: &[Vec3], b: &[Vec3]) -> f64 {
 fn pair(mut a: Problem, mut b: Problem, configure: impl Fn(&mut Problem)) -> f64 {
     configure(&mut a);
     configure(&mut b);
-    let rest = a.mesh.positions().to_vec();
+    let rest = a.mesh.nodes().to_vec();
     relative_difference(&rest, &solve(a), &solve(b))
 }
 
@@ -82,7 +82,7 @@ fn iterative_linear_solvers_match_direct_ones() {
     use isochor_solvers::LinearSolver;
     for method in [Method::Standard, Method::MixedP1, Method::Zonal] {
         let problem = cantilever(2, method, 0.45);
-        let rest = problem.mesh.positions().to_vec();
+        let rest = problem.mesh.nodes().to_vec();
         let direct = solve(problem.clone());
         let settings = Settings {
             linear: LinearSolver::Iterative {

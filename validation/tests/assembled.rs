@@ -54,7 +54,7 @@ fn problem(deformed: &Deformed, method: Method) -> Problem {
         material: Material::from_young_poisson(YOUNG, NU, 1000.0).expect("material"),
         zones: None,
         dirichlet: vec![Dirichlet {
-            vertices: clamped,
+            nodes: clamped,
             axes: [true; 3],
             motion: Motion::Fixed,
         }],
@@ -66,7 +66,7 @@ fn problem(deformed: &Deformed, method: Method) -> Problem {
             },
         ],
         obstacles: Vec::new(),
-        mesh,
+        mesh: mesh.into(),
     }
 }
 

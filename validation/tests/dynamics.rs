@@ -54,7 +54,7 @@ fn cantilever(method: Method) -> Problem {
         .collect();
     Problem {
         dirichlet: vec![Dirichlet {
-            vertices: clamped,
+            nodes: clamped,
             axes: [true; 3],
             motion: Motion::Fixed,
         }],
@@ -63,7 +63,7 @@ fn cantilever(method: Method) -> Problem {
         material: Material::from_young_poisson(266e3, 0.45, DENSITY).expect("material"),
         zones: None,
         obstacles: Vec::new(),
-        mesh,
+        mesh: mesh.into(),
     }
 }
 
@@ -120,8 +120,9 @@ fn assert_first_order(what: &str, orders: &[f64]) {
 /// constraint rows); the masses are lumped here, `rho sum_e V_e / 4`.
 fn reference_motion(method: Method, steps: usize) -> Vec<Vec3> {
     let problem = cantilever(method);
-    let mut masses = vec![0.0; problem.mesh.num_vertices()];
-    for (tet, volume) in problem.mesh.tets().iter().zip(problem.mesh.rest_volumes()) {
+    let corners = problem.mesh.corners();
+    let mut masses = vec![0.0; corners.num_vertices()];
+    for (tet, volume) in corners.tets().iter().zip(corners.rest_volumes()) {
         for &v in tet {
             masses[v] += DENSITY * volume / 4.0;
         }

@@ -77,8 +77,8 @@ fn patch(method: Method) -> Problem {
             .find(|&v| (mesh.positions()[v] - p).norm() < 1e-12)
             .expect("corner")
     };
-    let hold = |vertices: Vec<usize>, axes: [bool; 3]| Dirichlet {
-        vertices,
+    let hold = |nodes: Vec<usize>, axes: [bool; 3]| Dirichlet {
+        nodes,
         axes,
         motion: Motion::Fixed,
     };
@@ -105,7 +105,7 @@ fn patch(method: Method) -> Problem {
         material: Material::from_young_poisson(YOUNG, NU, 1000.0).expect("material"),
         zones: None,
         obstacles: Vec::new(),
-        mesh,
+        mesh: mesh.into(),
     }
 }
 
@@ -115,7 +115,7 @@ fn cantilever(method: Method) -> Problem {
     let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [8, 2, 2]).expect("beam");
     Problem {
         dirichlet: vec![Dirichlet {
-            vertices: plane(&mesh, 0, 0.0),
+            nodes: plane(&mesh, 0, 0.0),
             axes: [true; 3],
             motion: Motion::Fixed,
         }],
@@ -124,7 +124,7 @@ fn cantilever(method: Method) -> Problem {
         material: Material::from_young_poisson(266e3, 0.45, 1070.0).expect("material"),
         zones: None,
         obstacles: Vec::new(),
-        mesh,
+        mesh: mesh.into(),
     }
 }
 
@@ -290,7 +290,7 @@ fn patch_matches_homogeneous_newton(method: Method, model: &dyn Homogeneous) -> 
     let force_scale = sim.force_scale().expect("scale");
     let force_tol = Settings::default().force_tolerance * force_scale;
     let volumes = sim.constraint_volumes().to_vec();
-    let rest = sim.mesh().positions().to_vec();
+    let rest = sim.mesh().nodes().to_vec();
     let start = sim.state().clone();
     let summary = sim.run(stepping, |_| {}).expect("the patch converges");
     let mut u = vec![1.0, 1.0, 0.0][..model.unknowns()].to_vec();

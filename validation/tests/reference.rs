@@ -69,7 +69,7 @@ impl Bounds {
     fn of(scene: &Scene) -> Bounds {
         let built = build(scene).unwrap_or_else(|e| panic!("{}: {e}", scene.name));
         let settings = built.settings;
-        let (lo, hi) = built.problem.mesh.bounding_box();
+        let (lo, hi) = built.problem.mesh.corners().bounding_box();
         let penetration = settings.contact_tolerance * (hi - lo).norm();
         let mut per_frame = AMPLIFICATION * settings.force_tolerance;
         let frames = match scene.stepping {

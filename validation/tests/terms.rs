@@ -4,14 +4,17 @@
 //! negative control shows the harness rejects derivatives wrong by 1e-5; gravity and the
 //! zero-compliance folding of static condensation are also checked against their formulas.
 
-use isochor_constraints::{Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints};
+use isochor_constraints::{
+    exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+};
 use isochor_energies::{standard_neo_hookean, Epidermis, Lame};
-use isochor_mesh::Vec3;
+use isochor_mesh::{ElementMesh, Vec3};
 use isochor_solvers::terms::{
-    AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, FollowerPressure, Inertia,
+    AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces, FollowerPressure,
+    Inertia,
 };
 use isochor_solvers::SolverError;
-use isochor_validation::strategies::{deformed_box, Deformed};
+use isochor_validation::strategies::{deformed_box, quadratic};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 use std::sync::Arc;
@@ -90,10 +93,11 @@ fn check(term: &dyn EnergyTerm, x: &[Vec3]) -> (f64, f64) {
 }
 
 /// The lumped nodal constraints of the mixed and condensed methods, with `kappa = 1e3`.
-fn nodal(deformed: &Deformed) -> Arc<dyn ConstraintSet> {
+fn nodal(mesh: &ElementMesh) -> Arc<dyn ConstraintSet> {
     Arc::new(
-        NodalConstraints::new(
-            &deformed.mesh,
+        NodalConstraints::on_elements(
+            mesh,
+            exact_rule(mesh.kind()),
             Measure::Linear,
             1e3,
             NodalCompliance::Lumped,
@@ -103,18 +107,16 @@ fn nodal(deformed: &Deformed) -> Arc<dyn ConstraintSet> {
 }
 
 /// The folding of static condensation (eq. 36-37 of Francu et al. 2021) as the `condensed`
-/// method builds it: zero compliance, zero multipliers, stiffness `R = C_lumped^-1`; with
-/// the constraint values `phi` at the deformed state and `R`.
-fn condensed(deformed: &Deformed) -> (AugmentedConstraints, Vec<f64>, Vec<f64>) {
-    let set = nodal(deformed);
+/// method builds it on `mesh`: zero compliance, zero multipliers, stiffness
+/// `R = C_lumped^-1` (returned with the term).
+fn condensed(mesh: &ElementMesh) -> (AugmentedConstraints, Vec<f64>) {
+    let set = nodal(mesh);
     let Compliance::Diagonal(c) = set.compliance() else {
         panic!("lumped nodal compliance is diagonal");
     };
-    let mut phi = vec![0.0; c.len()];
-    set.values(&deformed.x, &mut phi).unwrap();
     let stiffness: Vec<f64> = c.iter().map(|ci| 1.0 / ci).collect();
     let term = AugmentedConstraints::new(set, vec![0.0; c.len()], stiffness.clone());
-    (term, phi, stiffness)
+    (term, stiffness)
 }
 
 /// Lumped masses of the test terms (1 +- 0.1, varying per vertex).
@@ -124,10 +126,11 @@ fn masses(n: usize, seed: f64) -> Vec<f64> {
         .collect()
 }
 
-fn terms(deformed: &Deformed, seed: f64) -> Vec<Box<dyn EnergyTerm>> {
-    let mesh = &deformed.mesh;
-    let faces = mesh.boundary().unwrap().triangles().to_vec();
-    let nodal = nodal(deformed);
+/// Every term on `mesh` (4- or 10-node tets), with data varying with `seed`.
+fn terms(mesh: &ElementMesh, seed: f64) -> Vec<Box<dyn EnergyTerm>> {
+    let triangles = mesh.corners().boundary().unwrap().triangles().to_vec();
+    let faces = || Faces::new(mesh, &triangles).unwrap();
+    let nodal = nodal(mesh);
     let m = nodal.num_constraints();
     let compliance = (0..m)
         .map(|i| 1e-3 * (1.0 + (i as f64 * seed).sin().abs()))
@@ -137,26 +140,23 @@ fn terms(deformed: &Deformed, seed: f64) -> Vec<Box<dyn EnergyTerm>> {
         .collect();
     let augmented = AugmentedConstraints::new(nodal, compliance, stiffness);
     augmented.set_multipliers(&(0..m).map(|i| (i as f64 * seed).sin()).collect::<Vec<_>>());
-    let masses = masses(mesh.num_vertices(), seed);
+    let masses = masses(mesh.num_nodes(), seed);
     let gravity = DeadLoad::gravity(&masses, Vec3::new(0.3, -9.8, seed));
-    let mut inertia = Inertia::new(masses, 0.01);
-    let velocities: Vec<Vec3> = (0..mesh.num_vertices())
+    let mut inertia = Inertia::new(mesh.lumped_volumes(), 0.01);
+    let velocities: Vec<Vec3> = (0..mesh.num_nodes())
         .map(|i| Vec3::repeat((i as f64 * seed).sin()))
         .collect();
-    inertia.begin_step(mesh.positions(), &velocities);
+    inertia.begin_step(mesh.nodes(), &velocities);
     let material = Arc::new(standard_neo_hookean(Lame::new(1.0, 10.0).unwrap()).unwrap());
+    let traction = DeadLoad::traction(mesh.nodes(), &faces(), Vec3::new(seed, -1.0, 0.5));
     vec![
-        Box::new(DeadLoad::traction(
-            mesh.positions(),
-            &faces,
-            Vec3::new(seed, -1.0, 0.5),
-        )),
+        Box::new(traction),
         Box::new(gravity),
-        Box::new(FollowerPressure::new(faces, 2.0 * seed)),
+        Box::new(FollowerPressure::new(faces(), 2.0 * seed)),
         Box::new(augmented),
-        Box::new(condensed(deformed).0),
+        Box::new(condensed(mesh).0),
         Box::new(inertia),
-        Box::new(Elastic::new(mesh, material, false)),
+        Box::new(Elastic::new(mesh, material, false).unwrap()),
         Box::new(EpidermisTerm::new(mesh, Epidermis::new(3.0, 1.0).unwrap()).unwrap()),
     ]
 }
@@ -227,7 +227,26 @@ proptest! {
     /// Every term's gradient and Hessian against central differences (see [`check`]).
     #[test]
     fn every_term_matches_finite_differences(deformed in deformed_box([1, 1, 2], 0.15, 0.3), seed in 0.1..1.0f64) {
-        for term in terms(&deformed, seed) {
+        for term in terms(&deformed.mesh.clone().into(), seed) {
+            let (g_error, h_error) = check(term.as_ref(), &deformed.x);
+            prop_assert!(g_error < TOLERANCE, "{}: gradient error {g_error:e}", term.name());
+            prop_assert!(h_error < TOLERANCE, "{}: Hessian error {h_error:e}", term.name());
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Every term on curved 10-node tets (6-node faces for traction, pressure and the
+    /// epidermis; HRZ masses in the inertia; the degree-5 rules of curved elements), against
+    /// central differences as above.
+    #[test]
+    fn every_term_on_quadratic_tets_matches_finite_differences(
+        deformed in quadratic(deformed_box([1, 1, 1], 0.15, 0.3), 0.05, 0.05, 0.3),
+        seed in 0.1..1.0f64,
+    ) {
+        for term in terms(&deformed.mesh, seed) {
             let (g_error, h_error) = check(term.as_ref(), &deformed.x);
             prop_assert!(g_error < TOLERANCE, "{}: gradient error {g_error:e}", term.name());
             prop_assert!(h_error < TOLERANCE, "{}: Hessian error {h_error:e}", term.name());
@@ -245,7 +264,7 @@ proptest! {
     /// own error, so the outcome does not depend on the case.)
     #[test]
     fn finite_differences_reject_a_wrong_derivative(deformed in deformed_box([1, 1, 2], 0.15, 0.3), seed in 0.1..1.0f64) {
-        for term in terms(&deformed, seed) {
+        for term in terms(&deformed.mesh.clone().into(), seed) {
             let defects: &[Defect] = if term.hessian_pattern().is_empty() {
                 &[Defect::ScaledGradient, Defect::GradientEntry]
             } else {
@@ -300,7 +319,10 @@ proptest! {
     /// of 12 positive terms: `1e-13` relative).
     #[test]
     fn condensed_folding_is_the_penalty_of_eq_36(deformed in deformed_box([1, 1, 2], 0.15, 0.3)) {
-        let (term, phi, stiffness) = condensed(&deformed);
+        let mesh = deformed.mesh.clone().into();
+        let (term, stiffness) = condensed(&mesh);
+        let mut phi = vec![0.0; stiffness.len()];
+        nodal(&mesh).values(&deformed.x, &mut phi).unwrap();
         let e = term.evaluate(&deformed.x, 1.0, None, None).unwrap();
         let expected: f64 = phi.iter().zip(&stiffness).map(|(p, r)| 0.5 * r * p * p).sum();
         prop_assert!((e - expected).abs() <= 1e-13 * expected, "{e} against {expected}");

@@ -347,8 +347,12 @@ impl ElementMesh {
     }
 
     /// Total rest volume `sum_e sum_q w_q det(dX/dxi)(xi_q)` by the degree-5 rule: exact for
-    /// the isoparametric geometry, whose `det(dX/dxi)` is a polynomial of degree at most 3.
+    /// the isoparametric geometry, whose `det(dX/dxi)` is a polynomial of degree at most 3
+    /// (for 4-node tets, the corner mesh's volume).
     pub fn rest_volume(&self) -> f64 {
+        if self.kind == TetElement::Tet4 {
+            return self.corners.rest_volume();
+        }
         let rule = TetQuadrature::Degree5;
         let n = self.kind.num_nodes();
         let mut dn = vec![Vec3::zeros(); n];
@@ -366,5 +370,12 @@ impl ElementMesh {
     /// The boundary surface of the mesh as 3- or 6-node triangles; see [`ElementSurface`].
     pub fn boundary(&self) -> Result<ElementSurface, MeshError> {
         ElementSurface::new(self)
+    }
+}
+
+impl From<TetMesh> for ElementMesh {
+    /// The 4-node mesh of `mesh` ([`ElementMesh::linear`]).
+    fn from(mesh: TetMesh) -> Self {
+        ElementMesh::linear(mesh)
     }
 }

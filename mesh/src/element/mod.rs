@@ -29,8 +29,10 @@
 //! So VTK's nodes 8 and 9 are our 9 and 8; [`TetElement::vtk_order`] is that permutation
 //! (its own inverse), applied by the VTU writer and reader.
 
+mod deformed;
 mod gradient;
 mod lagrange;
+mod lumping;
 mod mesh;
 mod quadrature;
 mod rest;

@@ -74,6 +74,22 @@ pub enum TetElement {
 }
 
 impl TetElement {
+    /// Both elements, linear first.
+    pub const ALL: [TetElement; 2] = [TetElement::Tet4, TetElement::Tet10];
+
+    /// The name used by scenes and the command line: `"tet4"` or `"tet10"`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            TetElement::Tet4 => "tet4",
+            TetElement::Tet10 => "tet10",
+        }
+    }
+
+    /// The element named `name` (see [`TetElement::name`]).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.name() == name)
+    }
+
     /// Number of nodes: 4 or 10.
     pub const fn num_nodes(self) -> usize {
         match self {

@@ -2,8 +2,8 @@
 //! mesh crate's writers.
 
 use crate::SceneError;
-use isochor_mesh::io::{write_pvd, write_vtu, Field};
-use isochor_mesh::{TetMesh, Vec3};
+use isochor_mesh::io::{write_pvd, write_vtu_elements, Field};
+use isochor_mesh::{ElementMesh, Vec3};
 use std::path::{Path, PathBuf};
 
 /// Writes every `every`-th frame (and always the last) into a folder.
@@ -35,25 +35,29 @@ impl FrameWriter {
     }
 
     /// Writes frame `index` at time or load `t` (0 is the rest state), with the contact
-    /// force per vertex as point data if given (one per vertex).
+    /// force per node as point data if given (one per node). 10-node meshes are written as
+    /// VTK quadratic tetrahedra, which ParaView draws curved.
     pub fn write(
         &mut self,
-        mesh: &TetMesh,
+        mesh: &ElementMesh,
         index: usize,
         t: f64,
         positions: &[Vec3],
         tet_pressures: &[f64],
         contact_forces: &[Vec3],
     ) -> Result<(), SceneError> {
-        let rest = mesh.positions();
+        let rest = mesh.nodes();
         let displacement: Vec<Vec3> = positions.iter().zip(rest).map(|(x, r)| x - r).collect();
-        let j: Vec<f64> = (0..mesh.num_tets())
-            .map(|e| mesh.volume_at(e, positions) / mesh.rest_volumes()[e])
+        let j: Vec<f64> = mesh
+            .volumes_at(positions)
+            .iter()
+            .zip(mesh.volumes_at(rest))
+            .map(|(v, v0)| v / v0)
             .collect();
-        let pressure = if tet_pressures.len() == mesh.num_tets() {
+        let pressure = if tet_pressures.len() == mesh.num_elements() {
             tet_pressures.to_vec()
         } else {
-            vec![0.0; mesh.num_tets()]
+            vec![0.0; mesh.num_elements()]
         };
         let mut cells = vec![Field::scalar("pressure", pressure), Field::scalar("J", j)];
         if let Some(z) = &self.zone_ids {
@@ -64,10 +68,11 @@ impl FrameWriter {
             points.push(Field::vector("contact_force", contact_forces.to_vec()));
         }
         let name = format!("{}_{index:05}.vtu", self.stem);
-        write_vtu(
+        write_vtu_elements(
             self.dir.join(&name),
             positions,
-            mesh.tets(),
+            mesh.kind(),
+            mesh.connectivity(),
             &points,
             &cells,
         )?;

@@ -1,8 +1,10 @@
-//! Dead loads: constant nodal forces `f_i`, ramped by the load parameter, with potential
-//! `-load sum_i f_i . x_i`. Gravity lumps `m_i g` to the vertices; a dead traction lumps
-//! `t A_f / 3` to the three vertices of each loaded face.
+//! Dead loads: constant nodal forces `f_a`, ramped by the load parameter, with potential
+//! `-load sum_a f_a . x_a`. Both are consistent loads, `f_a = integral N_a b`: gravity
+//! `b = rho g` over the volume, a dead traction `t` over the rest area of the loaded faces
+//! (on 3-node faces `t A_f / 3` per vertex, on 6-node flat faces `t A_f / 3` per mid-edge
+//! node and nothing at the corners).
 
-use super::EnergyTerm;
+use super::{EnergyTerm, Faces};
 use crate::SolverError;
 use isochor_mesh::Vec3;
 
@@ -14,7 +16,8 @@ pub struct DeadLoad {
 }
 
 impl DeadLoad {
-    /// Gravity `acceleration` acting on vertices of the given lumped `masses`.
+    /// Gravity `acceleration` on nodes of weights `masses`: `rho integral N_a dV` per node
+    /// (the mesh's [`isochor_mesh::ElementMesh::node_volumes`] times the density).
     pub fn gravity(masses: &[f64], acceleration: Vec3) -> Self {
         DeadLoad {
             name: "gravity",
@@ -27,16 +30,11 @@ impl DeadLoad {
     }
 
     /// Traction `traction` (force per unit rest area) on `faces` at rest positions `rest`.
-    pub fn traction(rest: &[Vec3], faces: &[[usize; 3]], traction: Vec3) -> Self {
+    pub fn traction(rest: &[Vec3], faces: &Faces, traction: Vec3) -> Self {
         let forces = faces
-            .iter()
-            .flat_map(|f| {
-                let area = 0.5
-                    * (rest[f[1]] - rest[f[0]])
-                        .cross(&(rest[f[2]] - rest[f[0]]))
-                        .norm();
-                f.map(|v| (v, traction * (area / 3.0)))
-            })
+            .node_areas(rest)
+            .into_iter()
+            .map(|(a, area)| (a, traction * area))
             .collect();
         DeadLoad {
             name: "traction",

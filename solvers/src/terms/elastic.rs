@@ -1,20 +1,36 @@
-//! The stored elastic energy `W(x) = sum_e V_e Psi(F_e(x))` (eq. 2 of Sheen et al. 2021),
-//! evaluated in parallel over tets.
+//! The stored elastic energy `W(x) = sum_e sum_q w_q Psi(F_q(x))` (eq. 2 of Sheen et al. 2021
+//! integrated by quadrature), evaluated in parallel over elements.
 
 use super::{block_pattern, scatter, EnergyTerm};
 use crate::SolverError;
-use isochor_energies::{project_to_psd, tet, Hyperelastic, Vector12};
-use isochor_mesh::{TetMesh, Vec3};
-use nalgebra::Matrix3;
+use isochor_energies::element::{self, RestPoints};
+use isochor_energies::{project_to_psd, Hyperelastic};
+use isochor_mesh::element::{deformation_gradient, RestGeometry, TetElement, TetQuadrature};
+use isochor_mesh::{ElementMesh, Vec3};
+use nalgebra::{DMatrix, Matrix3};
 use rayon::prelude::*;
 use std::sync::Arc;
 
-/// Elastic energy of every tet with one material.
+/// The quadrature rule of the elastic energy on `mesh`: the one-point rule on 4-node tets
+/// (exact, `F` is constant); on 10-node tets the 4-point degree-2 rule when every element is
+/// straight-sided (the usual full integration of the quadratic tet: `F` is linear, and the
+/// patch test passes exactly), the 14-point degree-5 rule when the mesh has curved elements
+/// (there `integral dN_a/dX dV` is a cubic that the degree-2 rule misses, so a homogeneous
+/// stretch would not be an equilibrium).
+pub fn elastic_rule(mesh: &ElementMesh) -> TetQuadrature {
+    match mesh.kind() {
+        TetElement::Tet4 => TetQuadrature::Degree1,
+        TetElement::Tet10 if mesh.is_affine() => TetQuadrature::Degree2,
+        TetElement::Tet10 => TetQuadrature::Degree5,
+    }
+}
+
+/// Elastic energy of every element with one material.
 #[derive(Debug)]
 pub struct Elastic {
-    tets: Vec<[usize; 4]>,
-    inverse_rest_shapes: Vec<Matrix3<f64>>,
-    rest_volumes: Vec<f64>,
+    nodes_per_element: usize,
+    connectivity: Vec<usize>,
+    rest: RestGeometry,
     material: Arc<dyn Hyperelastic>,
     project: bool,
     /// `sum_e V_e max |dP/dF (I)|`, see [`EnergyTerm::rounding_scale`].
@@ -22,20 +38,26 @@ pub struct Elastic {
 }
 
 impl Elastic {
-    /// The elastic energy of `mesh` with `material`; with `project`, element Hessians are
-    /// projected to positive semi-definite (for Newton on displacement-only problems).
-    pub fn new(mesh: &TetMesh, material: Arc<dyn Hyperelastic>, project: bool) -> Self {
+    /// The elastic energy of `mesh` with `material`, integrated by [`elastic_rule`]; with
+    /// `project`, element Hessians are projected to positive semi-definite (for Newton on
+    /// displacement-only problems).
+    pub fn new(
+        mesh: &ElementMesh,
+        material: Arc<dyn Hyperelastic>,
+        project: bool,
+    ) -> Result<Self, SolverError> {
         let stiffness = material
             .pk1_derivative(&Matrix3::identity())
             .map_or(0.0, |d| d.amax());
-        Elastic {
-            tets: mesh.tets().to_vec(),
-            inverse_rest_shapes: mesh.inverse_rest_shapes().to_vec(),
-            rest_volumes: mesh.rest_volumes().to_vec(),
+        let rest = mesh.rest_geometry(elastic_rule(mesh))?;
+        Ok(Elastic {
+            nodes_per_element: mesh.kind().num_nodes(),
+            connectivity: mesh.connectivity().to_vec(),
+            rounding_scale: stiffness * rest.volume(),
+            rest,
             material,
             project,
-            rounding_scale: stiffness * mesh.rest_volume(),
-        }
+        })
     }
 
     /// The material.
@@ -43,16 +65,39 @@ impl Elastic {
         self.material.as_ref()
     }
 
-    fn corners(&self, e: usize, x: &[Vec3]) -> [Vec3; 4] {
-        self.tets[e].map(|i| x[i])
+    fn num_elements(&self) -> usize {
+        self.connectivity.len() / self.nodes_per_element
     }
 
-    fn energy_and_gradient(&self, e: usize, x: &[Vec3]) -> Result<(f64, Vector12), SolverError> {
-        let xe = self.corners(e, x);
-        let (dm, v) = (&self.inverse_rest_shapes[e], self.rest_volumes[e]);
-        let energy = tet::energy(self.material.as_ref(), &xe, dm, v)?;
-        let gradient = tet::gradient(self.material.as_ref(), &xe, dm, v)?;
-        Ok((energy, gradient))
+    fn nodes(&self, e: usize) -> &[usize] {
+        let n = self.nodes_per_element;
+        &self.connectivity[e * n..(e + 1) * n]
+    }
+
+    fn points(&self, e: usize) -> RestPoints<'_> {
+        RestPoints {
+            weights: self.rest.element_weights(e),
+            gradients: self.rest.element_gradients(e),
+        }
+    }
+
+    fn element(
+        &self,
+        e: usize,
+        x: &[Vec3],
+        gradient: Option<&mut [f64]>,
+        hessian: Option<&mut [f64]>,
+    ) -> Result<f64, SolverError> {
+        let material = self.material.as_ref();
+        let energy = element::evaluate(
+            material,
+            x,
+            self.nodes(e),
+            self.points(e),
+            gradient,
+            hessian,
+        )?;
+        Ok(energy)
     }
 }
 
@@ -62,7 +107,9 @@ impl EnergyTerm for Elastic {
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        self.tets.iter().flat_map(block_pattern).collect()
+        (0..self.num_elements())
+            .flat_map(|e| block_pattern(self.nodes(e)))
+            .collect()
     }
 
     fn evaluate(
@@ -72,72 +119,58 @@ impl EnergyTerm for Elastic {
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let n = self.tets.len();
-        let (energy, local_gradients) = match hessian {
-            Some(out) => {
-                let mut local = vec![Vector12::zeros(); n];
-                let energy = out
-                    .par_chunks_mut(144)
-                    .zip(local.par_iter_mut())
-                    .enumerate()
-                    .map(|(e, (block, g))| {
-                        let xe = self.corners(e, x);
-                        let terms = tet::energy_gradient_hessian(
-                            self.material.as_ref(),
-                            &xe,
-                            &self.inverse_rest_shapes[e],
-                            self.rest_volumes[e],
-                        )?;
-                        let h = if self.project {
-                            project_to_psd(&terms.hessian)
-                        } else {
-                            terms.hessian
-                        };
-                        block.copy_from_slice(h.as_slice());
-                        *g = terms.gradient;
-                        Ok(terms.energy)
-                    })
-                    .sum::<Result<f64, SolverError>>()?;
-                (energy, Some(local))
+        let dim = 3 * self.nodes_per_element;
+        let derivatives = gradient.is_some() || hessian.is_some();
+        let mut local = vec![
+            0.0;
+            if derivatives {
+                dim * self.num_elements()
+            } else {
+                0
             }
-            None if gradient.is_some() => {
-                let pairs = (0..n)
-                    .into_par_iter()
-                    .map(|e| self.energy_and_gradient(e, x))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let energy = pairs.iter().map(|p| p.0).sum();
-                (energy, Some(pairs.into_iter().map(|p| p.1).collect()))
-            }
-            None => {
-                let energy = (0..n)
-                    .into_par_iter()
-                    .map(|e| {
-                        let xe = self.corners(e, x);
-                        tet::energy(
-                            self.material.as_ref(),
-                            &xe,
-                            &self.inverse_rest_shapes[e],
-                            self.rest_volumes[e],
-                        )
-                        .map_err(SolverError::from)
-                    })
-                    .sum::<Result<f64, SolverError>>()?;
-                (energy, None)
-            }
+        ];
+        let energy = match hessian {
+            Some(out) => out
+                .par_chunks_mut(dim * dim)
+                .zip(local.par_chunks_mut(dim))
+                .enumerate()
+                .map(|(e, (h, g))| {
+                    let energy = self.element(e, x, Some(g), Some(h))?;
+                    if self.project {
+                        let projected = project_to_psd(&DMatrix::from_column_slice(dim, dim, h));
+                        h.copy_from_slice(projected.as_slice());
+                    }
+                    Ok(energy)
+                })
+                .sum::<Result<f64, SolverError>>()?,
+            None if derivatives => local
+                .par_chunks_mut(dim)
+                .enumerate()
+                .map(|(e, g)| self.element(e, x, Some(g), None))
+                .sum::<Result<f64, SolverError>>()?,
+            None => (0..self.num_elements())
+                .into_par_iter()
+                .map(|e| self.element(e, x, None, None))
+                .sum::<Result<f64, SolverError>>()?,
         };
-        if let (Some(g), Some(local)) = (gradient, local_gradients) {
-            for (t, le) in self.tets.iter().zip(&local) {
-                scatter(t, le.as_slice(), g);
+        if let Some(g) = gradient {
+            for (e, l) in local.chunks_exact(dim).enumerate() {
+                scatter(self.nodes(e), l, g);
             }
         }
         Ok(energy)
     }
 
+    /// Whether `det F` is in the material's domain at every quadrature point.
     fn is_valid(&self, x: &[Vec3]) -> bool {
-        (0..self.tets.len()).into_par_iter().all(|e| {
-            let xe = self.corners(e, x);
-            let f = tet::deformation_gradient(&xe, &self.inverse_rest_shapes[e]);
-            self.material.is_defined_at(f.determinant())
+        let points = self.rest.num_points();
+        (0..self.num_elements()).into_par_iter().all(|e| {
+            let n = self.nodes_per_element;
+            let gradients = self.rest.element_gradients(e);
+            (0..points).all(|q| {
+                let f = deformation_gradient(x, self.nodes(e), &gradients[q * n..(q + 1) * n]);
+                self.material.is_defined_at(f.determinant())
+            })
         })
     }
 

@@ -1,37 +1,55 @@
-//! The epidermis energy on the boundary surface: `sum_f A_f lambda_e U(J~_f; gamma)`
-//! (eq. 16 of Sheen et al. 2021), an area-preserving skin over the volume.
+//! The epidermis energy on the boundary surface: `sum_f integral_f lambda_e U(J~; gamma) dA`
+//! (eq. 16 of Sheen et al. 2021), an area-preserving skin over the volume, on the 3- or
+//! 6-node boundary faces of the mesh.
 
-use super::{block_pattern, scatter, EnergyTerm};
+use super::{block_pattern, scatter, EnergyTerm, Faces};
 use crate::SolverError;
-use isochor_energies::triangle::RestTriangle;
+use isochor_energies::triangle::{area_element, RestFacePoints};
 use isochor_energies::Epidermis;
-use isochor_mesh::{TetMesh, Vec3};
+use isochor_mesh::{ElementMesh, Vec3};
 use rayon::prelude::*;
 
-/// Epidermis energy on every boundary triangle of a mesh.
+/// Epidermis energy on every boundary face of a mesh.
 #[derive(Debug)]
 pub struct EpidermisTerm {
-    faces: Vec<[usize; 3]>,
-    rest: Vec<RestTriangle>,
+    faces: Faces,
+    /// Rest area element `S_q` of every face at every point, face-major.
+    rest_areas: Vec<f64>,
     skin: Epidermis,
 }
 
 impl EpidermisTerm {
     /// The skin `skin` on the boundary of `mesh`.
-    pub fn new(mesh: &TetMesh, skin: Epidermis) -> Result<Self, SolverError> {
+    pub fn new(mesh: &ElementMesh, skin: Epidermis) -> Result<Self, SolverError> {
         let surface = mesh.boundary()?;
-        let faces = surface.triangles().to_vec();
-        let x = mesh.positions();
-        let rest = faces
-            .iter()
-            .enumerate()
-            .map(|(f, t)| {
-                RestTriangle::new(&t.map(|i| x[i])).ok_or_else(|| {
-                    SolverError::InvalidProblem(format!("boundary face {f} is degenerate"))
-                })
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(EpidermisTerm { faces, rest, skin })
+        let faces = Faces::from_nodes(surface.kind(), surface.faces().to_vec());
+        let x = mesh.nodes();
+        let mut rest_areas = Vec::with_capacity(faces.len() * faces.weights().len());
+        for (f, face) in faces.iter().enumerate() {
+            for q in 0..faces.weights().len() {
+                let area = area_element(x, face, faces.gradients(q));
+                if !(area > 0.0) {
+                    return Err(SolverError::InvalidProblem(format!(
+                        "boundary face {f} is degenerate"
+                    )));
+                }
+                rest_areas.push(area);
+            }
+        }
+        Ok(EpidermisTerm {
+            faces,
+            rest_areas,
+            skin,
+        })
+    }
+
+    fn rest(&self, f: usize) -> RestFacePoints<'_> {
+        let points = self.faces.weights().len();
+        RestFacePoints {
+            weights: self.faces.weights(),
+            areas: &self.rest_areas[f * points..(f + 1) * points],
+            gradients: self.faces.all_gradients(),
+        }
     }
 }
 
@@ -51,42 +69,36 @@ impl EnergyTerm for EpidermisTerm {
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let corners = |f: usize| self.faces[f].map(|i| x[i]);
+        let n = self.faces.nodes_per_face();
+        let count = self.faces.len();
+        let face = |f: usize| self.faces.face(f);
+        let derivatives = gradient.is_some() || hessian.is_some();
+        let mut local = vec![0.0; if derivatives { 3 * n * count } else { 0 }];
         let energy = match hessian {
-            Some(out) => {
-                let terms: Vec<_> = (0..self.faces.len())
-                    .into_par_iter()
-                    .map(|f| {
-                        self.skin
-                            .energy_gradient_hessian(&corners(f), &self.rest[f])
-                    })
-                    .collect();
-                for (block, t) in out.chunks_mut(81).zip(&terms) {
-                    block.copy_from_slice(t.hessian.as_slice());
-                }
-                if let Some(g) = gradient {
-                    for (face, t) in self.faces.iter().zip(&terms) {
-                        scatter(face, t.gradient.as_slice(), g);
-                    }
-                }
-                terms.iter().map(|t| t.energy).sum()
-            }
-            None => {
-                if let Some(g) = gradient {
-                    for (f, face) in self.faces.iter().enumerate() {
-                        scatter(
-                            face,
-                            self.skin.gradient(&corners(f), &self.rest[f]).as_slice(),
-                            g,
-                        );
-                    }
-                }
-                (0..self.faces.len())
-                    .into_par_iter()
-                    .map(|f| self.skin.energy(&corners(f), &self.rest[f]))
-                    .sum()
-            }
+            Some(out) => out
+                .par_chunks_mut(9 * n * n)
+                .zip(local.par_chunks_mut(3 * n))
+                .enumerate()
+                .map(|(f, (h, g))| {
+                    self.skin
+                        .evaluate(x, face(f), self.rest(f), Some(g), Some(h))
+                })
+                .sum(),
+            None if derivatives => local
+                .par_chunks_mut(3 * n)
+                .enumerate()
+                .map(|(f, g)| self.skin.evaluate(x, face(f), self.rest(f), Some(g), None))
+                .sum(),
+            None => (0..count)
+                .into_par_iter()
+                .map(|f| self.skin.evaluate(x, face(f), self.rest(f), None, None))
+                .sum(),
         };
+        if let Some(g) = gradient {
+            for (f, l) in local.chunks_exact(3 * n).enumerate() {
+                scatter(face(f), l, g);
+            }
+        }
         Ok(energy)
     }
 }

@@ -7,7 +7,7 @@ mod contact;
 mod dead_load;
 mod elastic;
 mod epidermis;
-
+mod faces;
 mod inertia;
 mod pressure;
 
@@ -16,7 +16,7 @@ pub use contact::{Contact, ContactState, ContactSummary};
 pub use dead_load::DeadLoad;
 pub use elastic::Elastic;
 pub use epidermis::EpidermisTerm;
-
+pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
 
@@ -64,18 +64,17 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
     }
 }
 
-/// Dense `(dof, dof)` pattern of the blocks of an element with the given vertices, in the
-/// column-major order of nalgebra's element matrices.
-pub(crate) fn block_pattern<const V: usize>(
-    vertices: &[usize; V],
-) -> impl Iterator<Item = (usize, usize)> + '_ {
-    let dof = move |local: usize| 3 * vertices[local / 3] + local % 3;
-    (0..3 * V).flat_map(move |c| (0..3 * V).map(move |r| (dof(r), dof(c))))
+/// Dense `(dof, dof)` pattern of the blocks of an element (or face) with the given nodes, in
+/// the column-major order of its `3n x 3n` element matrix.
+pub(crate) fn block_pattern(nodes: &[usize]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let dof = move |local: usize| 3 * nodes[local / 3] + local % 3;
+    let n = 3 * nodes.len();
+    (0..n).flat_map(move |c| (0..n).map(move |r| (dof(r), dof(c))))
 }
 
-/// Adds an element vector (vertex-major, 3 per vertex) into the global gradient.
-pub(crate) fn scatter<const V: usize>(vertices: &[usize; V], local: &[f64], global: &mut [f64]) {
-    for (a, &v) in vertices.iter().enumerate() {
+/// Adds an element vector (node-major, 3 per node) into the global gradient.
+pub(crate) fn scatter(nodes: &[usize], local: &[f64], global: &mut [f64]) {
+    for (a, &v) in nodes.iter().enumerate() {
         for k in 0..3 {
             global[3 * v + k] += local[3 * a + k];
         }

@@ -1,33 +1,30 @@
 //! Follower pressure on a surface: potential `load p V_f(x)` with
-//! `V_f(x) = sum_faces x0 . (x1 x x2) / 6`, the signed volume of the cones from the origin
-//! to the faces. Its gradient is the follower force `-p n dA` (lumped to vertices) and its
-//! Hessian the consistent, symmetric load stiffness. For a closed surface, or an open one
-//! whose rim is held by Dirichlet conditions (the inflated tube), this is exactly the
-//! pressure load; faces are oriented with the body's outward normal, so a positive pressure
-//! pushes into the body (into the wall of a chamber: the chamber inflates).
+//! `V_f(x) = (1/3) integral x . n da = (1/3) sum_faces sum_q w_q x . (dx/dxi x dx/deta)`, the
+//! signed volume of the cones from the origin to the faces (on a 3-node face the one-point
+//! rule gives `x0 . (x1 x x2) / 6`; on a 6-node face the degree-4 rule is exact). Its gradient
+//! is the follower force `-p n da` and its Hessian the consistent, symmetric load stiffness.
+//! For a closed surface, or an open one whose rim is held by Dirichlet conditions (the
+//! inflated tube), this is exactly the pressure load; faces are oriented with the body's
+//! outward normal, so a positive pressure pushes into the body (into the wall of a chamber:
+//! the chamber inflates).
 
-use super::{block_pattern, scatter, EnergyTerm};
+use super::{block_pattern, scatter, EnergyTerm, Faces};
 use crate::SolverError;
 use isochor_mesh::Vec3;
-use nalgebra::{Matrix3, SMatrix};
+use nalgebra::{DMatrix, Matrix3};
 
 /// Follower pressure on a set of faces.
 #[derive(Debug, Clone)]
 pub struct FollowerPressure {
-    faces: Vec<[usize; 3]>,
+    faces: Faces,
     pressure: f64,
 }
 
 impl FollowerPressure {
     /// Pressure `pressure` on `faces` (body-outward orientation).
-    pub fn new(faces: Vec<[usize; 3]>, pressure: f64) -> Self {
+    pub fn new(faces: Faces, pressure: f64) -> Self {
         FollowerPressure { faces, pressure }
     }
-}
-
-/// The skew matrix `[a]x` with `[a]x b = a x b`.
-fn skew(a: &Vec3) -> Matrix3<f64> {
-    a.cross_matrix()
 }
 
 impl EnergyTerm for FollowerPressure {
@@ -39,6 +36,11 @@ impl EnergyTerm for FollowerPressure {
         self.faces.iter().flat_map(block_pattern).collect()
     }
 
+    /// At a point with position `x`, tangents `a = dx/dxi`, `b = dx/deta` and shape values
+    /// `N`, `G1 = dN/dxi`, `G2 = dN/deta`, the integrand `T = x . (a x b)` has gradient
+    /// `N_c (a x b) + G1_c (b x x) + G2_c (x x a)` for node `c`, and (`T` being trilinear)
+    /// Hessian block `(c, d)`
+    /// `(G1_c N_d - N_c G1_d)[b]x + (G2_c G1_d - G1_c G2_d)[x]x + (N_c G2_d - G2_c N_d)[a]x`.
     fn evaluate(
         &self,
         x: &[Vec3],
@@ -46,30 +48,54 @@ impl EnergyTerm for FollowerPressure {
         mut gradient: Option<&mut [f64]>,
         mut hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let s = load * self.pressure / 6.0;
+        let s = load * self.pressure / 3.0;
+        let n = self.faces.nodes_per_face();
+        let mut local = vec![0.0; 3 * n];
+        let mut block = DMatrix::<f64>::zeros(3 * n, 3 * n);
         let mut energy = 0.0;
         for (f, face) in self.faces.iter().enumerate() {
-            let [a, b, c] = face.map(|v| x[v]);
-            energy += s * a.dot(&b.cross(&c));
-            if let Some(g) = gradient.as_deref_mut() {
-                let mut local = [0.0; 9];
-                for (k, v) in [b.cross(&c), c.cross(&a), a.cross(&b)].iter().enumerate() {
-                    local[3 * k..3 * k + 3].copy_from_slice((v * s).as_slice());
+            local.fill(0.0);
+            block.fill(0.0);
+            for (q, w) in self.faces.weights().iter().enumerate() {
+                let (values, grads) = (self.faces.values(q), self.faces.gradients(q));
+                let mut p = Vec3::zeros();
+                let (mut a, mut b) = (Vec3::zeros(), Vec3::zeros());
+                for ((&i, v), g) in face.iter().zip(values).zip(grads) {
+                    p += *v * x[i];
+                    a += g.x * x[i];
+                    b += g.y * x[i];
                 }
+                let sw = s * w;
+                energy += sw * p.dot(&a.cross(&b));
+                let (ab, bp, pa) = (a.cross(&b), b.cross(&p), p.cross(&a));
+                for c in 0..n {
+                    let force = values[c] * ab + grads[c].x * bp + grads[c].y * pa;
+                    for k in 0..3 {
+                        local[3 * c + k] += sw * force[k];
+                    }
+                }
+                if hessian.is_some() {
+                    let (sa, sb, sp): (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>) =
+                        (a.cross_matrix(), b.cross_matrix(), p.cross_matrix());
+                    for d in 0..n {
+                        for c in 0..n {
+                            let (nc, g1c, g2c) = (values[c], grads[c].x, grads[c].y);
+                            let (nd, g1d, g2d) = (values[d], grads[d].x, grads[d].y);
+                            let m = sb * (g1c * nd - nc * g1d)
+                                + sp * (g2c * g1d - g1c * g2d)
+                                + sa * (nc * g2d - g2c * nd);
+                            let mut view = block.fixed_view_mut::<3, 3>(3 * c, 3 * d);
+                            view += m * sw;
+                        }
+                    }
+                }
+            }
+            if let Some(g) = gradient.as_deref_mut() {
                 scatter(face, &local, g);
             }
             if let Some(h) = hessian.as_deref_mut() {
-                // d2/dxa dxb of a . (b x c) = -[c]x for (a, b), cyclic.
-                let mut block = SMatrix::<f64, 9, 9>::zeros();
-                let pairs = [(0, 1, c), (1, 2, a), (2, 0, b)];
-                for (i, j, w) in pairs {
-                    let m = -skew(&w) * s;
-                    block.fixed_view_mut::<3, 3>(3 * i, 3 * j).copy_from(&m);
-                    block
-                        .fixed_view_mut::<3, 3>(3 * j, 3 * i)
-                        .copy_from(&m.transpose());
-                }
-                h[81 * f..81 * (f + 1)].copy_from_slice(block.as_slice());
+                let size = 9 * n * n;
+                h[size * f..size * (f + 1)].copy_from_slice(block.as_slice());
             }
         }
         Ok(energy)
