@@ -4,33 +4,34 @@
 //! names, parallel assembly into fixed sparsity patterns, sparse direct and iterative linear
 //! solvers, Newton on displacements (`standard`, `condensed`), saddle-point Newton (`mixed-*`,
 //! `zonal`), dual ascent (`dual`), quasi-static load stepping and implicit Euler.
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | `model` | what is solved: the [`Problem`] a user states, its DOFs, and the model holding only the terms it names |
+//! | [`terms`] | the energy terms: elastic, loads, inertia, epidermis, contact, augmented constraints |
+//! | `assembly` | the assembled view the nonlinear solvers iterate on: fixed patterns, parallel refills |
+//! | `nonlinear` | Newton, saddle-point Newton and dual ascent, and the target of one step |
+//! | [`linear`] | sparse Cholesky, KKT `LDL^T`, CG and MINRES, orderings and shifts |
+//! | `simulation` | the stepping driver ([`Simulation`]: quasi-static and implicit Euler) and its reports |
 
 mod assembly;
-mod dofs;
-mod dual;
 mod error;
 pub mod linear;
 mod model;
-mod newton;
-mod problem;
-mod report;
-mod saddle;
+mod nonlinear;
 mod settings;
 mod simulation;
-mod step;
-mod system;
 pub mod terms;
 
-pub use dofs::Dofs;
 pub use error::SolverError;
-pub use problem::{
-    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Shape,
+pub use model::{
+    Dirichlet, Dofs, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Shape,
     ZonalEnergy,
 };
-pub use report::{IterationReport, StepReport, Timings};
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{
     Energies, Frame, Linearizer, NewtonSystem, RunSummary, Simulation, SimulationFailure, State,
     Stepping,
 };
+pub use simulation::{IterationReport, StepReport, Timings};
 pub use terms::ContactSummary;

@@ -14,7 +14,7 @@ mod pressure;
 pub use augmented::AugmentedConstraints;
 pub use contact::{Contact, ContactState, ContactSummary};
 pub use dead_load::DeadLoad;
-pub use elastic::Elastic;
+pub use elastic::{elastic_rule, Elastic};
 pub use epidermis::EpidermisTerm;
 pub use faces::Faces;
 pub use inertia::Inertia;

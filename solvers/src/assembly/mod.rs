@@ -3,11 +3,13 @@
 //! the constraints), the constraint values and Jacobian, all mapped to free DOFs through
 //! layouts built once per run.
 
-use crate::assembly::Layout;
+mod layout;
+
 use crate::model::{Model, Strategy};
 use crate::terms::{EnergyTerm, Inertia};
 use crate::{Settings, SolverError};
 use isochor_mesh::Vec3;
+use layout::Layout;
 use std::time::{Duration, Instant};
 
 /// What one evaluation produced.

@@ -3,11 +3,11 @@
 //! backtracking line search that rejects states outside the energy's domain (inverted
 //! elements under `log J`) and enforces sufficient decrease (Armijo).
 
+use crate::assembly::{Evaluation, System};
 use crate::linear::{
     cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower,
 };
-use crate::step::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::system::{Evaluation, System};
+use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::LinearSolver;
 use crate::{IterationReport, SolverError, StepReport};
 use faer::sparse::SparseColMat;

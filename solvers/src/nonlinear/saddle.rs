@@ -11,13 +11,13 @@
 //! tolerances; the Newton direction is a descent direction for it) that also rejects states
 //! outside the domain of the energy or the constraints.
 
+use crate::assembly::System;
 use crate::linear::{
     diagonal, minres, saddle_point_diagonal, CholeskySolver, IterativeOptions, Jacobi, KktOptions,
     KktSolver, LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
 };
 use crate::model::Strategy;
-use crate::step::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::system::System;
+use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::{IterationReport, LinearSolver, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_constraints::Compliance;

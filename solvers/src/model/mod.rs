@@ -1,21 +1,31 @@
-//! A model holds only the terms a problem names: the elastic energy of its method, the
-//! loads it lists, the constraint set of a mixed or zonal method, the lumped masses.
+//! What is solved: the [`Problem`] a user states, its [`Dofs`], and the model built from it,
+//! which holds only the terms the problem names: the elastic energy of its method, the loads
+//! it lists, the constraint set of a mixed or zonal method, the lumped masses.
 
 use crate::terms::{
     AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces,
     FollowerPressure,
 };
-use crate::{Dofs, Load, Method, Problem, SolverError, ZonalEnergy};
+use crate::SolverError;
 use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance,
     NodalConstraints, ZonalConstraints,
 };
 use isochor_energies::{
-    constrained_neo_hookean, standard_neo_hookean, DistortionalNeoHookean, Epidermis, Hyperelastic,
+    constrained_neo_hookean, standard_neo_hookean, DistortionalNeoHookean, Hyperelastic,
 };
 use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
+
+mod dofs;
+mod problem;
+
+pub use dofs::Dofs;
+pub use problem::{
+    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Shape,
+    ZonalEnergy,
+};
 
 /// How the nonlinear problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -222,7 +232,11 @@ impl Model {
             project_hessians,
         )?)];
         if let Some(skin) = material.epidermis {
-            let skin = Epidermis::from_young_poisson(skin.young, skin.poisson, skin.gamma)?;
+            let skin = isochor_energies::Epidermis::from_young_poisson(
+                skin.young,
+                skin.poisson,
+                skin.gamma,
+            )?;
             terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
         }
         for load in loads {

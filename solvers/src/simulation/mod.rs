@@ -1,14 +1,18 @@
 //! The stepping drivers (quasi-static load stepping and implicit Euler) and their results.
 
-use crate::dual;
+use crate::assembly::System;
 use crate::model::{Model, Strategy};
-use crate::newton::{self, Newton};
-use crate::saddle::SaddleNewton;
-use crate::step::{norm, StepTarget};
-use crate::system::System;
+use crate::nonlinear::dual;
+use crate::nonlinear::newton::{self, Newton};
+use crate::nonlinear::saddle::SaddleNewton;
+use crate::nonlinear::target::{norm, StepTarget};
+
+mod report;
+
 use crate::terms::Inertia;
-use crate::{Method, Problem, Settings, SolverError, StepReport};
+use crate::{Method, Problem, Settings, SolverError};
 use faer::sparse::SparseColMat;
+pub use report::{IterationReport, StepReport, Timings};
 
 use isochor_mesh::element::deformation_gradient;
 use isochor_mesh::{ElementMesh, Vec3};

@@ -10,9 +10,9 @@
 //! base Poisson ratio the primal energy carries the augmented term of sec. 8.3 (see
 //! [`crate::terms::AugmentedConstraints`]).
 
-use crate::newton::Newton;
-use crate::step::{max_abs, StepTarget};
-use crate::system::System;
+use crate::assembly::System;
+use crate::nonlinear::newton::Newton;
+use crate::nonlinear::target::{max_abs, StepTarget};
 use crate::{SolverError, StepReport};
 use isochor_constraints::Compliance;
 use isochor_mesh::Vec3;
