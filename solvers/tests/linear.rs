@@ -6,9 +6,9 @@ mod common;
 use common::{p1_box, P1Box};
 use faer::sparse::SparseColMat;
 use isochor_solvers::linear::{
-    cg, diagonal, minres, relative_residual, saddle_point_diagonal, CholeskySolver,
-    IterativeOptions, Jacobi, KktOptions, KktSolver, LinearError, LinearOperator,
-    Method as SolveMethod, SaddlePoint, ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
+    cg, diagonal, minres, relative_residual, saddle_point_diagonal, CholeskySolver, Factorization,
+    IterativeOptions, Jacobi, KktOptions, KktSolver, LinearError, LinearOperator, SaddlePoint,
+    ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
 };
 use nalgebra::{DMatrix, DVector};
 
@@ -384,7 +384,7 @@ fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() 
         .expect("the LU fallback solves a consistent system");
     let report = lu.report();
     eprintln!("LU-path report: {report:?}");
-    assert_eq!(report.method, SolveMethod::Lu, "{report:?}");
+    assert_eq!(report.factorization, Factorization::Lu, "{report:?}");
     assert!(report.residual < 1e-12, "{report:?}");
     assert!(max_diff(&x[..n], &y[..n]) < 1e-8 * max_abs(&truth[..n]));
 

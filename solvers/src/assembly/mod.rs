@@ -5,7 +5,7 @@
 
 mod layout;
 
-use crate::model::{Model, Strategy};
+use crate::model::{Model, NonlinearScheme};
 use crate::terms::{EnergyTerm, Inertia};
 use crate::{Settings, SolverError};
 use isochor_mesh::Vec3;
@@ -67,8 +67,8 @@ impl<'m> System<'m> {
             push(i.hessian_pattern());
         }
         let saddle = matches!(
-            model.strategy,
-            Strategy::SaddleDirect | Strategy::SaddleSchur
+            model.scheme,
+            NonlinearScheme::SaddleDirect | NonlinearScheme::SaddleSchur
         );
         let (jacobian, jacobian_len) = match &model.constraints {
             Some(c) => {

@@ -4,7 +4,7 @@
 
 use super::operator::{norm, LinearOperator, SymmetricLower};
 use super::pattern::{copy_structure, entry_pairs, same_structure};
-use super::{LinearError, Method, ShiftSchedule, SolveReport, SparsityPattern, Triangle};
+use super::{Factorization, LinearError, ShiftSchedule, SolveReport, SparsityPattern, Triangle};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
@@ -52,7 +52,7 @@ impl CholeskySolver {
             Default::default(),
         )?;
         let report = SolveReport {
-            method: Method::Cholesky,
+            factorization: Factorization::Cholesky,
             symbolic_time: start.elapsed(),
             factor_nnz: symbolic.len_val(),
             residual: f64::NAN,

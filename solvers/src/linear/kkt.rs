@@ -35,7 +35,9 @@ use super::jacobi::{diagonal, saddle_point_diagonal};
 use super::operator::{norm, LinearOperator, SymmetricLower};
 use super::ordering::anchored_ordering;
 use super::pattern::{copy_structure, entry_pairs, same_structure};
-use super::{Inertia, LinearError, Method, ShiftSchedule, SolveReport, SparsityPattern, Triangle};
+use super::{
+    Factorization, Inertia, LinearError, ShiftSchedule, SolveReport, SparsityPattern, Triangle,
+};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::linalg::solvers::Solve;
@@ -405,9 +407,9 @@ impl KktSolver {
                         return Err(wrong_inertia(inertia, n, m));
                     }
                     self.factor = Factor::Ldlt;
-                    self.report.method = match regularized {
-                        0 => Method::Ldlt,
-                        _ => Method::RegularizedLdlt,
+                    self.report.factorization = match regularized {
+                        0 => Factorization::Ldlt,
+                        _ => Factorization::RegularizedLdlt,
                     };
                     self.report.inertia = Some(inertia);
                     self.report.regularized_pivots = regularized;
@@ -486,7 +488,7 @@ impl KktSolver {
             faer::sparse::linalg::LuError::Generic(e) => e.into(),
         })?;
         self.factor = Factor::Lu(Box::new(lu));
-        self.report.method = Method::Lu;
+        self.report.factorization = Factorization::Lu;
         self.report.inertia = None;
         self.report.regularized_pivots = 0;
         Ok(())
@@ -539,7 +541,9 @@ impl KktSolver {
         let ldlt_failed = matches!(self.factor, Factor::Ldlt)
             && match result {
                 Err(LinearError::NonFiniteSolution) => true,
-                Err(LinearError::InaccurateSolution { .. }) => self.report.method == Method::Ldlt,
+                Err(LinearError::InaccurateSolution { .. }) => {
+                    self.report.factorization == Factorization::Ldlt
+                }
                 _ => false,
             };
         if ldlt_failed && self.options.lu_fallback {

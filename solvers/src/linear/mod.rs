@@ -39,5 +39,5 @@ pub use jacobi::{diagonal, saddle_point_diagonal, Jacobi};
 pub use kkt::{KktOptions, KktSolver, PivotRegularization};
 pub use operator::{relative_residual, LinearOperator, SaddlePoint, SymmetricLower};
 pub use pattern::{entry_pairs, SparsityPattern, Triangle};
-pub use report::{Inertia, Method, SolveReport};
+pub use report::{Factorization, Inertia, SolveReport};
 pub use shift::{max_abs_diagonal, ShiftSchedule};

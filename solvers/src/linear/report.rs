@@ -16,7 +16,7 @@ pub struct Inertia {
 
 /// Which factorization produced the last solution.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum Method {
+pub enum Factorization {
     /// Nothing factorized yet.
     #[default]
     None,
@@ -34,7 +34,7 @@ pub enum Method {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SolveReport {
     /// The factorization in use.
-    pub method: Method,
+    pub factorization: Factorization,
     /// Time of the symbolic analysis (ordering, elimination tree); paid once per pattern.
     pub symbolic_time: Duration,
     /// Time of the latest numeric factorization, including copying values into the

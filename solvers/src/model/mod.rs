@@ -29,7 +29,7 @@ pub use problem::{
 
 /// How the nonlinear problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Strategy {
+pub enum NonlinearScheme {
     /// Newton on the total energy (standard, condensed).
     Minimize,
     /// Saddle-point Newton with the full KKT system factorized (mixed methods).
@@ -47,7 +47,7 @@ pub struct Model {
     /// The rest geometry at each element's centroid (one-point rule), for element outputs.
     pub centroids: RestGeometry,
     pub method: Method,
-    pub strategy: Strategy,
+    pub scheme: NonlinearScheme,
     pub terms: Vec<Box<dyn EnergyTerm>>,
     /// Constraints solved with multipliers (saddle point and dual).
     pub constraints: Option<Arc<dyn ConstraintSet>>,
@@ -146,15 +146,15 @@ impl Model {
         };
         let mut constraints: Option<Arc<dyn ConstraintSet>> = None;
         let mut augmented = None;
-        let strategy = match method {
-            Method::Standard => Strategy::Minimize,
+        let scheme = match method {
+            Method::Standard => NonlinearScheme::Minimize,
             Method::MixedP1 => {
                 constraints = Some(Arc::new(nodal(
                     Measure::Linear,
                     kappa()?,
                     material.nodal_compliance,
                 )?));
-                Strategy::SaddleDirect
+                NonlinearScheme::SaddleDirect
             }
             Method::MixedP1Log => {
                 constraints = Some(Arc::new(nodal(
@@ -162,7 +162,7 @@ impl Model {
                     kappa()?,
                     material.nodal_compliance,
                 )?));
-                Strategy::SaddleDirect
+                NonlinearScheme::SaddleDirect
             }
             Method::MixedP0 | Method::MixedP0Log if material.nu >= 0.5 => {
                 return Err(unsupported(
@@ -182,7 +182,7 @@ impl Model {
                     measure,
                     kappa()?,
                 )?));
-                Strategy::SaddleDirect
+                NonlinearScheme::SaddleDirect
             }
             Method::Condensed => {
                 if material.nu >= 0.5 {
@@ -196,7 +196,7 @@ impl Model {
                 let stiffness = c.iter().map(|ci| 1.0 / ci).collect();
                 let zero = vec![0.0; c.len()];
                 augmented = Some(AugmentedConstraints::new(set, zero, stiffness));
-                Strategy::Minimize
+                NonlinearScheme::Minimize
             }
             Method::Dual => {
                 let set: Arc<dyn ConstraintSet> =
@@ -215,14 +215,14 @@ impl Model {
                 };
                 augmented = Some(AugmentedConstraints::new(set.clone(), c, stiffness));
                 constraints = Some(set);
-                Strategy::Dual
+                NonlinearScheme::Dual
             }
             Method::Zonal => {
                 let zones = zones.unwrap_or_else(|| Zones::global(mesh.corners()));
                 constraints = Some(Arc::new(ZonalConstraints::on_elements(
                     &mesh, rule, &zones,
                 )?));
-                Strategy::SaddleSchur
+                NonlinearScheme::SaddleSchur
             }
         };
 
@@ -273,7 +273,7 @@ impl Model {
             mesh,
             centroids,
             method,
-            strategy,
+            scheme,
             terms,
             constraints,
             augmented,

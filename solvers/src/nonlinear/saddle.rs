@@ -16,7 +16,7 @@ use crate::linear::{
     diagonal, minres, saddle_point_diagonal, CholeskySolver, IterativeOptions, Jacobi, KktOptions,
     KktSolver, LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
 };
-use crate::model::Strategy;
+use crate::model::NonlinearScheme;
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::{IterationReport, LinearSolver, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
@@ -125,7 +125,7 @@ impl SaddleNewton {
             .jacobian
             .as_ref()
             .ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
-        let linear = match (system.settings.linear, system.model.strategy) {
+        let linear = match (system.settings.linear, system.model.scheme) {
             (
                 LinearSolver::Iterative {
                     tolerance,
@@ -144,7 +144,7 @@ impl SaddleNewton {
                     g: empty(0, 0),
                 }))
             }
-            (_, Strategy::SaddleSchur) => Linear::Schur(Box::new(Schur {
+            (_, NonlinearScheme::SaddleSchur) => Linear::Schur(Box::new(Schur {
                 cholesky: CholeskySolver::new(system.hessian.pattern().symbolic())
                     .map_err(linear_error)?,
                 rows: DMatrix::zeros(0, 0),

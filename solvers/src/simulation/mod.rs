@@ -1,7 +1,7 @@
 //! The stepping drivers (quasi-static load stepping and implicit Euler) and their results.
 
 use crate::assembly::System;
-use crate::model::{Model, Strategy};
+use crate::model::{Model, NonlinearScheme};
 use crate::nonlinear::dual;
 use crate::nonlinear::newton::{self, Newton};
 use crate::nonlinear::saddle::SaddleNewton;
@@ -253,7 +253,7 @@ impl Simulation {
     pub fn new(problem: Problem, settings: Settings) -> Result<Self, SolverError> {
         check_settings(&settings)?;
         let model = Model::new(problem, settings.project_hessians)?;
-        if model.strategy == Strategy::Dual && settings.linear != crate::LinearSolver::Direct {
+        if model.scheme == NonlinearScheme::Dual && settings.linear != crate::LinearSolver::Direct {
             return Err(SolverError::InvalidProblem(
                 "the dual solver reuses the primal factorization (eq. 41): use the direct linear solver".into(),
             ));
@@ -265,7 +265,7 @@ impl Simulation {
             velocities: vec![Vec3::zeros(); n],
             multipliers: vec![
                 0.0;
-                if model.strategy == Strategy::Minimize {
+                if model.scheme == NonlinearScheme::Minimize {
                     0
                 } else {
                     m
@@ -410,9 +410,11 @@ impl Simulation {
             inertia
         });
         let system = System::new(&self.model, inertia, self.settings)?;
-        let saddle = match self.model.strategy {
-            Strategy::Minimize | Strategy::Dual => None,
-            Strategy::SaddleDirect | Strategy::SaddleSchur => Some(SaddleNewton::new(&system)?),
+        let saddle = match self.model.scheme {
+            NonlinearScheme::Minimize | NonlinearScheme::Dual => None,
+            NonlinearScheme::SaddleDirect | NonlinearScheme::SaddleSchur => {
+                Some(SaddleNewton::new(&system)?)
+            }
         };
         let (fraction, _, target) = step_target(&self.model, steps, dt, step, force_tolerance);
         if let Some(contact) = &self.model.contact {
@@ -572,7 +574,7 @@ impl Simulation {
 }
 
 /// The assembled system of a run with time step `dt` (inertia in implicit Euler, none in
-/// quasi-static stepping) and the nonlinear solver of the model's strategy.
+/// quasi-static stepping) and the nonlinear solver of the model's scheme.
 fn setup(
     model: &Model,
     settings: Settings,
@@ -580,10 +582,10 @@ fn setup(
 ) -> Result<(System<'_>, Solver), SolverError> {
     let inertia = dt.map(|dt| Inertia::new(model.masses.clone(), dt));
     let system = System::new(model, inertia, settings)?;
-    let solver = match model.strategy {
-        Strategy::Minimize => Solver::Newton(Newton::new(&system)?),
-        Strategy::Dual => Solver::Dual(Newton::new(&system)?),
-        Strategy::SaddleDirect | Strategy::SaddleSchur => {
+    let solver = match model.scheme {
+        NonlinearScheme::Minimize => Solver::Newton(Newton::new(&system)?),
+        NonlinearScheme::Dual => Solver::Dual(Newton::new(&system)?),
+        NonlinearScheme::SaddleDirect | NonlinearScheme::SaddleSchur => {
             Solver::Saddle(SaddleNewton::new(&system)?)
         }
     };
