@@ -28,7 +28,7 @@ impl EpidermisTerm {
         for (f, face) in faces.iter().enumerate() {
             for q in 0..faces.weights().len() {
                 let area = area_element(x, face, faces.gradients(q));
-                if !(area > 0.0) {
+                if area.is_nan() || area <= 0.0 {
                     return Err(SolverError::InvalidProblem(format!(
                         "boundary face {f} is degenerate"
                     )));

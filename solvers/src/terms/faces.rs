@@ -56,6 +56,11 @@ impl Faces {
         self.nodes.len() / self.kind.num_nodes()
     }
 
+    /// Whether there are no faces.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
     /// Nodes per face.
     pub fn nodes_per_face(&self) -> usize {
         self.kind.num_nodes()
