@@ -82,6 +82,20 @@ fn row_volumes(constraints: &dyn ConstraintSet, rest: &[Vec3]) -> Result<Vec<f64
     Ok(v)
 }
 
+/// `kappa / V_i` for every row of the nodal `constraints`, with `V_i` the rest volume the row
+/// measures: the stiffness of a lumped compliance `V_i / kappa` (static condensation, eq. 37)
+/// or of a base Poisson ratio (sec. 8.3), without inverting a compliance.
+fn stiffness_per_row(
+    constraints: &dyn ConstraintSet,
+    kappa: f64,
+    rest: &[Vec3],
+) -> Result<Vec<f64>, SolverError> {
+    Ok(row_volumes(constraints, rest)?
+        .iter()
+        .map(|v| kappa / v)
+        .collect())
+}
+
 /// The diagonal of a compliance (lumped sets only).
 fn diagonal(c: Compliance) -> Result<Vec<f64>, SolverError> {
     match c {
@@ -137,7 +151,8 @@ impl Model {
             _ => Arc::new(DistortionalNeoHookean::new(mu)?),
         };
 
-        let kappa = || material.mixed_kappa();
+        // Every volumetric stiffness below comes from these two, converted once.
+        let (young, kappa) = (material.young(), material.mixed_kappa()?);
         let rule = exact_rule(mesh.kind());
         let nodal = |measure, kappa, compliance| -> Result<NodalConstraints, SolverError> {
             Ok(NodalConstraints::on_elements(
@@ -151,7 +166,7 @@ impl Model {
             Method::MixedP1 => {
                 constraints = Some(Arc::new(nodal(
                     Measure::Linear,
-                    kappa()?,
+                    kappa,
                     material.nodal_compliance,
                 )?));
                 NonlinearScheme::SaddleDirect
@@ -159,7 +174,7 @@ impl Model {
             Method::MixedP1Log => {
                 constraints = Some(Arc::new(nodal(
                     Measure::Logarithmic,
-                    kappa()?,
+                    kappa,
                     material.nodal_compliance,
                 )?));
                 NonlinearScheme::SaddleDirect
@@ -177,10 +192,7 @@ impl Model {
                     Measure::Logarithmic
                 };
                 constraints = Some(Arc::new(ElementConstraints::on_elements(
-                    &mesh,
-                    rule,
-                    measure,
-                    kappa()?,
+                    &mesh, rule, measure, kappa,
                 )?));
                 NonlinearScheme::SaddleDirect
             }
@@ -191,25 +203,21 @@ impl Model {
                     ));
                 }
                 let set: Arc<dyn ConstraintSet> =
-                    Arc::new(nodal(Measure::Linear, kappa()?, NodalCompliance::Lumped)?);
-                let c = diagonal(set.compliance())?;
-                let stiffness = c.iter().map(|ci| 1.0 / ci).collect();
-                let zero = vec![0.0; c.len()];
+                    Arc::new(nodal(Measure::Linear, kappa, NodalCompliance::Lumped)?);
+                // C^-1 of the lumped compliance C_i = V_i / kappa.
+                let stiffness = stiffness_per_row(set.as_ref(), kappa, mesh.nodes())?;
+                let zero = vec![0.0; stiffness.len()];
                 augmented = Some(AugmentedConstraints::new(set, zero, stiffness));
                 NonlinearScheme::Minimize
             }
             Method::Dual => {
                 let set: Arc<dyn ConstraintSet> =
-                    Arc::new(nodal(Measure::Linear, kappa()?, NodalCompliance::Lumped)?);
+                    Arc::new(nodal(Measure::Linear, kappa, NodalCompliance::Lumped)?);
                 let c = diagonal(set.compliance())?;
                 let stiffness = match material.dual_base_nu {
                     Some(nu) => {
-                        let base_kappa = isochor_energies::bulk_modulus(material.young(), nu)?;
-                        let base = nodal(Measure::Linear, base_kappa, NodalCompliance::Lumped)?;
-                        diagonal(base.compliance())?
-                            .iter()
-                            .map(|ci| 1.0 / ci)
-                            .collect()
+                        let base_kappa = isochor_energies::bulk_modulus(young, nu)?;
+                        stiffness_per_row(set.as_ref(), base_kappa, mesh.nodes())?
                     }
                     None => vec![0.0; c.len()],
                 };
