@@ -116,17 +116,10 @@ fn affine_patch(mesh: &ElementMesh, method: Method, nu: f64, a: &Matrix3<f64>, b
     let x = &state.positions;
     let rest = mesh.nodes();
     let largest = rest.iter().map(|p| (map(p) - p).norm()).fold(0.0, f64::max);
-    let interior: Vec<usize> = (0..mesh.num_nodes())
-        .filter(|i| boundary.binary_search(i).is_err())
-        .collect();
-    let error = interior
-        .iter()
-        .map(|&i| (x[i] - map(&rest[i])).norm())
-        .fold(0.0, f64::max)
-        / largest;
+    let error = worst_unprescribed(mesh.num_nodes(), &boundary, |i| x[i] - map(&rest[i])) / largest;
     let tet = sim.tet_pressures(state);
     Patch {
-        interior: interior.len(),
+        interior: mesh.num_nodes() - boundary.len(),
         error,
         tet_spread: spread(&tet),
         tet_pressure: tet.iter().sum::<f64>() / tet.len() as f64,
@@ -371,14 +364,8 @@ fn bending_errors(
     let (u, p) = linear_response(problem(mesh.clone(), method, nu, dirichlet));
     let rest = mesh.nodes();
     let largest = rest.iter().map(|x| u_exact(x).norm()).fold(0.0, f64::max);
-    let free: Vec<usize> = (0..mesh.num_nodes())
-        .filter(|i| prescribed.binary_search(i).is_err())
-        .collect();
-    let error = free
-        .iter()
-        .map(|&i| (u[i] - u_exact(&rest[i])).norm())
-        .fold(0.0, f64::max)
-        / largest;
+    let error =
+        worst_unprescribed(mesh.num_nodes(), prescribed, |i| u[i] - u_exact(&rest[i])) / largest;
     let pressure = (!p.is_empty()).then(|| {
         // sigma = 2 mu eps + p I with eps = k y diag(-1, nu, nu): p = kappa tr(eps) for
         // nu < 1/2 (tension positive); at nu = 1/2, sigma_yy = 0 gives p = -2 mu nu k y.
@@ -398,7 +385,7 @@ fn bending_errors(
             .fold(0.0, f64::max)
             / top
     });
-    (free.len(), error, pressure)
+    (mesh.num_nodes() - prescribed.len(), error, pressure)
 }
 
 /// Pure bending (a quadratic displacement, linear pressure) of amplitude 1e-7 of the length
@@ -783,4 +770,12 @@ fn cantilever_tet10_pressure_does_not_checkerboard() {
         quadratic[1] < 0.6 * quadratic[0] && linear[1] > 0.8 * linear[0],
         "tet10 {quadratic:?}, tet4 {linear:?}"
     );
+}
+
+/// The largest `|error(i)|` over the nodes `0..n` not in the sorted list `prescribed`.
+fn worst_unprescribed(n: usize, prescribed: &[usize], error: impl Fn(usize) -> Vec3) -> f64 {
+    (0..n)
+        .filter(|i| prescribed.binary_search(i).is_err())
+        .map(|i| error(i).norm())
+        .fold(0.0, f64::max)
 }
