@@ -328,3 +328,49 @@ proptest! {
         prop_assert!((e - expected).abs() <= 1e-13 * expected, "{e} against {expected}");
     }
 }
+
+/// A dead traction is the consistent load `t integral N_a dA`: its total is `t` times the
+/// loaded area on both elements, and on flat 6-node faces the corners carry nothing and
+/// each mid-edge node a third of each face it borders (the exact `integral N_a dA` of the
+/// quadratic triangle); the follower pressure on a closed 6-node surface at rest has the
+/// energy `p V` of the volume it encloses.
+#[test]
+fn traction_and_pressure_on_quadratic_faces_are_the_consistent_loads() {
+    let mesh = isochor_mesh::generate::box_grid(Vec3::zeros(), Vec3::new(0.3, 0.2, 0.1), [3, 2, 1])
+        .unwrap();
+    let boundary = mesh.boundary().unwrap();
+    let triangles = boundary.triangles().to_vec();
+    let area: f64 = boundary.rest_areas().iter().sum();
+    let t = Vec3::new(0.5, -2.0, 1.5);
+    for elements in [
+        ElementMesh::linear(mesh.clone()),
+        ElementMesh::quadratic(mesh.clone()),
+    ] {
+        let faces = Faces::new(&elements, &triangles).unwrap();
+        let load = DeadLoad::traction(elements.nodes(), &faces, t);
+        assert!((load.total_force() - area * t).norm() < 1e-14 * area * t.norm());
+        let nv = elements.num_vertices();
+        let mut per_node = vec![Vec3::zeros(); elements.num_nodes()];
+        let mut gradient = vec![0.0; 3 * elements.num_nodes()];
+        load.evaluate(elements.nodes(), 1.0, Some(&mut gradient), None)
+            .unwrap();
+        for (a, f) in per_node.iter_mut().enumerate() {
+            *f = -Vec3::new(gradient[3 * a], gradient[3 * a + 1], gradient[3 * a + 2]);
+        }
+        if elements.num_nodes() > nv {
+            let nodes = elements.face_elements(&triangles).unwrap();
+            let mut expected = vec![Vec3::zeros(); elements.num_nodes()];
+            for (face, a) in nodes.chunks_exact(6).zip(boundary.rest_areas()) {
+                face[3..].iter().for_each(|&m| expected[m] += t * (a / 3.0));
+            }
+            for (f, e) in per_node.iter().zip(&expected) {
+                assert!((f - e).norm() < 1e-15 * t.norm(), "{f} against {e}");
+            }
+        }
+        let pressure = FollowerPressure::new(Faces::new(&elements, &triangles).unwrap(), 3.0);
+        let energy = pressure
+            .evaluate(elements.nodes(), 1.0, None, None)
+            .unwrap();
+        assert!((energy - 3.0 * 0.3 * 0.2 * 0.1).abs() < 1e-15, "{energy}");
+    }
+}
