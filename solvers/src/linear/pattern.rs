@@ -72,21 +72,32 @@ impl SparsityPattern {
                 next[pair.1] += 1;
             }
         }
+        // Per column: the distinct rows (marked with the column's stamp), sorted, then each
+        // input entry's slot through the row's position. Sorting the few distinct rows
+        // rather than every duplicate entry (an element mesh repeats each entry once per
+        // element around it) is what keeps this linear in the input.
         let mut slots = vec![SKIPPED; pairs.len()];
         let mut col_ptr = Vec::with_capacity(ncols + 1);
         let mut row_idx = Vec::new();
+        let mut stamp = vec![usize::MAX; nrows];
+        let mut position = vec![0usize; nrows];
         col_ptr.push(0);
         for j in 0..ncols {
-            let bucket = &mut by_col[col_count[j]..col_count[j + 1]];
-            bucket.sort_unstable_by_key(|&k| pairs[k].0);
-            let mut last_row = usize::MAX;
-            for &k in bucket.iter() {
+            let bucket = &by_col[col_count[j]..col_count[j + 1]];
+            let start = row_idx.len();
+            for &k in bucket {
                 let row = pairs[k].0;
-                if row != last_row {
+                if stamp[row] != j {
+                    stamp[row] = j;
                     row_idx.push(row);
-                    last_row = row;
                 }
-                slots[k] = row_idx.len() - 1;
+            }
+            row_idx[start..].sort_unstable();
+            for (slot, &row) in row_idx[start..].iter().enumerate() {
+                position[row] = start + slot;
+            }
+            for &k in bucket {
+                slots[k] = position[pairs[k].0];
             }
             col_ptr.push(row_idx.len());
         }
