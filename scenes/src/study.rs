@@ -19,7 +19,10 @@
 //! (the one whose extrapolation moves least from its finest value, unless
 //! `--reference METHOD[/ELEMENT]` names it). The error of a run is
 //! `|probe - reference| / |reference|`; for 10%, 5% and 1% the fastest run within them is
-//! marked, with a warning when the reference is not known to better than the level.
+//! marked, with a warning when the reference is not known to better than the level. A series
+//! whose own extrapolation lies farther from the reference than a level (beyond both
+//! uncertainties) converges elsewhere: its runs within that level are crossings and do not
+//! count as reaching it.
 //! Outputs: `study.csv`, `study.md` and the log-log plot `study.png` of error against time.
 
 use crate::output::{finish_plot, plot_error, write_file, OutputDir};
@@ -688,14 +691,38 @@ impl Study {
             .is_some_and(|r| r.relative_uncertainty() <= level)
     }
 
+    /// The relative distance of the series labelled `series`' own extrapolated limit from the
+    /// reference, if the series converges elsewhere at `level`: when even the nearest reading
+    /// of both (the distance minus the extrapolation's estimate and the reference's
+    /// uncertainty) is farther than `level`. Its runs within `level` are then crossings on the
+    /// way to another limit (a method that solves a different model, such as `zonal` with its
+    /// own penalty), which no resolution can be chosen in advance to hit, and are not counted
+    /// as reaching the level.
+    pub fn converges_elsewhere(&self, level: f64, series: &str) -> Option<f64> {
+        let reference = self.reference.as_ref()?;
+        let value = reference.value();
+        let e = self
+            .extrapolations
+            .iter()
+            .find(|e| self.label(&e.method, &e.element) == series)?;
+        let distance = (e.limit - value).abs() / value.abs();
+        (distance - e.relative_estimate() - reference.relative_uncertainty() > level)
+            .then_some(distance)
+    }
+
     /// Index of the fastest converged run with error at most `level`, of the series labelled
-    /// `series` if given (see [`Study::label`]).
+    /// `series` if given (see [`Study::label`]), leaving out series that converge elsewhere
+    /// (see [`Study::converges_elsewhere`]).
     pub fn fastest(&self, level: f64, series: Option<&str>) -> Option<usize> {
         self.runs
             .iter()
             .enumerate()
             .filter(|(_, r)| series.is_none_or(|s| self.run_label(r) == s))
             .filter(|(_, r)| r.error.is_some_and(|e| e <= level))
+            .filter(|(_, r)| {
+                self.converges_elsewhere(level, &self.run_label(r))
+                    .is_none()
+            })
             .filter_map(|(i, r)| r.wall_time().map(|t| (i, t)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(i, _)| i)
@@ -858,8 +885,12 @@ impl Study {
                 .series_labels()
                 .into_iter()
                 .filter(|m| *m != best_label)
-                .map(|m| match self.fastest(level, Some(&m)) {
-                    Some(i) => {
+                .map(|m| match (self.fastest(level, Some(&m)), self.converges_elsewhere(level, &m)) {
+                    (None, Some(d)) => format!(
+                        "{m} converges elsewhere (its extrapolated limit is {:.2}% from the reference)",
+                        100.0 * d
+                    ),
+                    (Some(i), _) => {
                         let o = &self.runs[i];
                         let ot = o.wall_time().unwrap_or(f64::NAN);
                         format!(
@@ -870,7 +901,7 @@ impl Study {
                             ot / t
                         )
                     }
-                    None => format!("{m} does not reach it"),
+                    (None, None) => format!("{m} does not reach it"),
                 })
                 .collect();
             if !others.is_empty() {
@@ -1034,9 +1065,15 @@ impl Study {
                 None => out += " no run |",
             }
             for l in &labels {
-                match self.fastest(level, Some(l)) {
-                    Some(i) => out += &format!(" {} |", cell(i)),
-                    None => out += " not reached |",
+                match (
+                    self.fastest(level, Some(l)),
+                    self.converges_elsewhere(level, l),
+                ) {
+                    (Some(i), _) => out += &format!(" {} |", cell(i)),
+                    (None, Some(d)) => {
+                        out += &format!(" converges elsewhere (limit {} off) |", percent(d))
+                    }
+                    (None, None) => out += " not reached |",
                 }
             }
             out += "\n";

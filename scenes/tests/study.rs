@@ -547,3 +547,57 @@ fn cantilever_study_on_two_elements_skips_runs_over_the_limit() {
     assert!(std::fs::metadata(written.join("study.png")).unwrap().len() > 0);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A series that converges cleanly to another limit (here `f = 1.08 - 0.08 (2h)^2`: 0.76, 1,
+/// 1.06, 1.075 at `res = 1, 2, 4, 8`, limit 1.08 with a zero estimate) crosses the reference 1
+/// exactly at res 2. Its limit is 8% off, so it counts within 10% (where its res 2 run is the
+/// fastest) but converges elsewhere at 5% and 1%: there the fastest run is `mixed-p1/tet4`'s
+/// res 8 (3.125%, 0.8 s), and at 1% no run reaches the level.
+#[test]
+fn a_series_converging_elsewhere_does_not_reach_finer_levels() {
+    let mut runs = mixed_tet4();
+    runs.extend(series_on(
+        Method::Zonal,
+        TetElement::Tet10,
+        &[0.76, 1.0, 1.06, 1.075],
+        0.1,
+    ));
+    let s = Study::from_runs(
+        "synthetic".into(),
+        "res".into(),
+        PROBE.into(),
+        runs,
+        ReferenceSpec::Value {
+            value: 1.0,
+            relative_uncertainty: 0.0,
+        },
+    )
+    .unwrap();
+    let zonal = &s.extrapolations[1];
+    assert!(
+        close(zonal.limit, 1.08) && zonal.relative_estimate() < 1e-12,
+        "{zonal:?}"
+    );
+    let d = s.converges_elsewhere(0.05, "zonal/tet10").expect("8% > 5%");
+    assert!(close(d, 0.08), "{d}");
+    assert_eq!(s.converges_elsewhere(0.10, "zonal/tet10"), None);
+    // tet4's limit 0.975 is 2.5% off, within its own 2.56% estimate.
+    assert_eq!(s.converges_elsewhere(0.01, "mixed-p1/tet4"), None);
+    assert_eq!(s.fastest(0.10, None), Some(5), "zonal/tet10 at res 2");
+    assert_eq!(s.fastest(0.05, None), Some(3), "mixed-p1/tet4 at res 8");
+    assert_eq!(s.fastest(0.05, Some("zonal/tet10")), None);
+    assert_eq!(s.fastest(0.01, None), None);
+    let summary = s.summary();
+    for line in [
+        "error <= 10%: fastest zonal/tet10 at res = 2 (0.200 s, error 0.00%)",
+        "error <= 5%: fastest mixed-p1/tet4 at res = 8 (0.800 s, error 3.12%); zonal/tet10 converges elsewhere (its extrapolated limit is 8.00% from the reference)",
+        "error <= 1%: no run",
+    ] {
+        assert!(summary.contains(line), "{line}\n{summary}");
+    }
+    let table = s.fastest_table();
+    assert!(
+        table.contains("| 1% | no run | not reached | converges elsewhere (limit 8.00% off) |"),
+        "{table}"
+    );
+}
