@@ -1103,6 +1103,16 @@ impl Study {
     }
 }
 
+/// A log-axis tick with as many decimals as its first significant digit needs (`0.001`,
+/// `0.05`, `10`).
+fn tick(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return format!("{v}");
+    }
+    let decimals = (-v.log10().floor()).max(0.0) as usize;
+    format!("{v:.decimals$}")
+}
+
 /// Log-log plot of error (percent) against wall time, one curve per series (a color per
 /// method, dashed for the second element), with the error
 /// levels as dashed lines and the fastest run for each level circled.
@@ -1158,7 +1168,7 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
         None => format!("{}: no reference", study.scene),
     };
     let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
+        .caption(title, ("sans-serif", 17))
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -1168,8 +1178,8 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
         .configure_mesh()
         .x_desc("wall time (s)")
         .y_desc("relative error (%)")
-        .x_label_formatter(&|v| format!("{v:.2}"))
-        .y_label_formatter(&|v| format!("{v:.2}"))
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(|e| plot_error(path, e))?;
     for (level, color) in LEVELS.iter().zip([
@@ -1252,29 +1262,41 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
             }))
             .map_err(|e| plot_error(path, e))?;
     }
+    // The fastest run of each resolved level, circled once with every level it wins.
+    let mut marked: Vec<(usize, Vec<f64>)> = Vec::new();
     for level in LEVELS.into_iter().filter(|&l| study.resolves(l)) {
         if let Some(i) = study.fastest(level, None) {
-            let r = &study.runs[i];
-            let (t, e) = (
-                r.wall_time().unwrap_or(t_lo),
-                err(100.0 * r.error.unwrap_or(0.0)),
-            );
-            chart
-                .draw_series([Circle::new((t, e), 11, BLACK.stroke_width(2))])
-                .map_err(|e| plot_error(path, e))?;
-            chart
-                .draw_series([Text::new(
-                    format!("fastest <= {:.0}%", 100.0 * level),
-                    (t, e),
-                    ("sans-serif", 15).into_font().color(&BLACK).pos(
-                        plotters::style::text_anchor::Pos::new(
-                            plotters::style::text_anchor::HPos::Right,
-                            plotters::style::text_anchor::VPos::Bottom,
-                        ),
-                    ),
-                )])
-                .map_err(|e| plot_error(path, e))?;
+            match marked.iter_mut().find(|(j, _)| *j == i) {
+                Some((_, levels)) => levels.push(level),
+                None => marked.push((i, vec![level])),
+            }
         }
+    }
+    for (i, levels) in marked {
+        let r = &study.runs[i];
+        let (t, e) = (
+            r.wall_time().unwrap_or(t_lo),
+            err(100.0 * r.error.unwrap_or(0.0)),
+        );
+        let levels: Vec<String> = levels
+            .iter()
+            .map(|l| format!("{:.0}%", 100.0 * l))
+            .collect();
+        chart
+            .draw_series([Circle::new((t, e), 11, BLACK.stroke_width(2))])
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series([Text::new(
+                format!("fastest <= {}", levels.join(", ")),
+                (t, e),
+                ("sans-serif", 15).into_font().color(&BLACK).pos(
+                    plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Right,
+                        plotters::style::text_anchor::VPos::Bottom,
+                    ),
+                ),
+            )])
+            .map_err(|e| plot_error(path, e))?;
     }
     finish_plot(
         &mut chart,
