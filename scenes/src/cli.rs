@@ -5,7 +5,9 @@
 //! isochor run SCENE [--set KEY=VALUE]... [--out DIR] [--json] [--variant NAME]
 //! isochor compare SCENE --methods A,B,... [--set KEY=VALUE]... [--sweep KEY=V1,V2,...] [--out DIR] [--json]
 //! isochor show SCENE [--set KEY=VALUE]... [--variant NAME]   # the scene as TOML, to copy and edit
-//! isochor study SCENE --methods A,B,... [--sweep res=1,2,4,8] [--probe NAME] [--reference METHOD] [--set KEY=VALUE]... [--out DIR]
+//! isochor study SCENE --methods A,B,... [--elements tet4,tet10] [--sweep res=1,2,4,8] [--probe NAME]
+//!               [--reference METHOD[/ELEMENT] | --reference-value VALUE [--reference-uncertainty REL]]
+//!               [--max-unknowns N] [--set KEY=VALUE]... [--out DIR]
 //! ```
 //!
 //! Exit status: 0 on success, 1 on an error (bad scene, key, value or file; nothing is
@@ -14,7 +16,7 @@
 
 use crate::compare::{compare, describe_output, parse_methods, CompareRequest};
 use crate::overrides::Override;
-use crate::study::{study, StudyRequest};
+use crate::study::{parse_elements, study, ReferenceSpec, StudyRequest};
 use crate::{builtin, run_named, RunResult, SceneError, SceneSource};
 use clap::{Parser, Subcommand};
 use std::io::Write;
@@ -81,23 +83,41 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Measure the speed/accuracy trade: every method at every mesh resolution, the error of
-    /// a probe against a Richardson-extrapolated reference, against wall time.
+    /// Measure the speed/accuracy trade: every method on every element at every mesh
+    /// resolution, the error of a probe against a reference (given, or Richardson-extrapolated),
+    /// against wall time.
     Study {
         /// Built-in scene name or path to a TOML scene file.
         scene: String,
         /// Methods to compare, comma-separated (e.g. standard,mixed-p1,zonal).
         #[arg(long, value_name = "A,B,...")]
         methods: String,
+        /// Elements to run every method on, comma-separated (tet4, tet10; default: the
+        /// scene's element). Each (method, element) pair is a series, e.g. mixed-p1/tet10.
+        #[arg(long, value_name = "E1,E2,...")]
+        elements: Option<String>,
         /// Mesh resolutions (h = 1 / value), coarse to fine.
         #[arg(long, value_name = "KEY=V1,V2,...", default_value = "res=1,2,4,8")]
         sweep: String,
         /// The probe to measure (default: the scene's deflection probe).
         #[arg(long, value_name = "NAME")]
         probe: Option<String>,
-        /// The method whose extrapolation is the reference (default: the best-converging).
-        #[arg(long, value_name = "METHOD")]
+        /// The series whose extrapolation is the reference, METHOD or METHOD/ELEMENT
+        /// (default: the best-converging series).
+        #[arg(long, value_name = "METHOD[/ELEMENT]")]
         reference: Option<String>,
+        /// A reference value of the probe known from elsewhere (e.g. a converged computation),
+        /// instead of an extrapolated one.
+        #[arg(long, value_name = "VALUE", conflicts_with = "reference")]
+        reference_value: Option<f64>,
+        /// Relative uncertainty of --reference-value (0.003 for 0.3%; default 0: exact).
+        /// Error levels finer than it are reported as not resolved.
+        #[arg(long, value_name = "REL", requires = "reference_value")]
+        reference_uncertainty: Option<f64>,
+        /// Skip runs whose linear system would have more than N unknowns (and the finer runs
+        /// of their series).
+        #[arg(long, value_name = "N")]
+        max_unknowns: Option<usize>,
         /// Override a parameter in every run.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
@@ -185,9 +205,13 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
         Command::Study {
             scene,
             methods,
+            elements,
             sweep,
             probe,
             reference,
+            reference_value,
+            reference_uncertainty,
+            max_unknowns,
             set,
             out,
         } => {
@@ -201,12 +225,22 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             let request = StudyRequest {
                 scene,
                 methods: parse_methods(&methods)?,
+                elements: elements
+                    .as_deref()
+                    .map(parse_elements)
+                    .transpose()?
+                    .unwrap_or_default(),
                 sweep: Some(sweep),
                 probe,
-                reference: reference
-                    .as_deref()
-                    .map(|m| m.trim().parse().map_err(SceneError::from))
-                    .transpose()?,
+                reference: match (reference, reference_value) {
+                    (Some(series), _) => ReferenceSpec::parse_series(&series)?,
+                    (None, Some(value)) => ReferenceSpec::Value {
+                        value,
+                        relative_uncertainty: reference_uncertainty.unwrap_or(0.0),
+                    },
+                    (None, None) => ReferenceSpec::Best,
+                },
+                max_unknowns,
                 overrides: parse_overrides(&set)?,
                 out: Some(out),
                 progress: true,

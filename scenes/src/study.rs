@@ -1,16 +1,28 @@
-//! `isochor study`: the speed/accuracy trade of several methods over mesh resolutions.
+//! `isochor study`: the speed/accuracy trade of several methods and elements over mesh
+//! resolutions.
 //!
-//! Every method runs at every resolution of the sweep (`--sweep res=1,2,4,8`, the mesh size
-//! taken as `h = 1 / value`). Each run records its wall time, unknowns, Newton iterations and
-//! one probe. The reference is the Richardson extrapolation of the three finest converged
-//! runs of the best-converging method (the one whose extrapolation moves least from its
-//! finest value, unless `--reference METHOD` names it): with `f = f_inf + C h^p`, the observed
-//! order `p` solves `(f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p)`. Its error
-//! estimate is the change of the extrapolation when the finest run is added (the difference
-//! between the limits of the last two triples), or, with only three runs, the conservative
-//! `|f_inf - f3|`. The error of a run is `|probe - reference| / |reference|`; for 1% and 5%
-//! the fastest run within them is marked, with a warning when the reference is not known to
-//! better than the level.
+//! Every method runs on every element (`--elements tet4,tet10`, default the scene's element)
+//! at every resolution of the sweep (`--sweep res=1,2,4,8`, the mesh size taken as
+//! `h = 1 / value`); each (method, element) pair is a series, labelled `METHOD/ELEMENT` when
+//! the study has more than one element and `METHOD` otherwise. Each run records its wall time,
+//! unknowns, Newton iterations and one probe. With `--max-unknowns N`, a run whose linear
+//! system would have more than `N` unknowns (counted on the built problem before solving) is
+//! skipped, and so are the finer runs of its series.
+//!
+//! Every series with three converged runs is extrapolated (Richardson): with
+//! `f = f_inf + C h^p`, the observed order `p` solves
+//! `(f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p)`. Its error estimate is the change
+//! of the extrapolation when the finest run is added (the difference between the limits of
+//! the last two triples), or, with only three runs, the conservative `|f_inf - f3|`. The
+//! reference is a value known from elsewhere (`--reference-value`, with its relative
+//! uncertainty `--reference-uncertainty`), or the extrapolation of the best-converging series
+//! (the one whose extrapolation moves least from its finest value, unless
+//! `--reference METHOD[/ELEMENT]` names it). The error of a run is
+//! `|probe - reference| / |reference|`; for 10%, 5% and 1% the fastest run within them is
+//! marked, with a warning when the reference is not known to better than the level. A series
+//! whose own extrapolation lies farther from the reference than a level (beyond both
+//! uncertainties) converges elsewhere: its runs within that level are crossings and do not
+//! count as reaching it.
 //! Outputs: `study.csv`, `study.md` and the log-log plot `study.png` of error against time.
 
 use crate::output::{finish_plot, plot_error, write_file, OutputDir};
@@ -18,13 +30,14 @@ use crate::overrides::{parse_sweep, Override};
 use crate::result::RunResult;
 use crate::run::{run_scene, RunOptions};
 use crate::{SceneError, SceneSource};
-use isochor_solvers::Method;
+use isochor_mesh::element::TetElement;
+use isochor_solvers::{Method, Simulation};
 use plotters::prelude::*;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-/// Error levels at which the fastest run is marked.
-pub const LEVELS: [f64; 2] = [0.01, 0.05];
+/// Error levels at which the fastest run is marked, coarse to fine.
+pub const LEVELS: [f64; 3] = [0.10, 0.05, 0.01];
 
 /// Probes tried, in order, when `--probe` is not given.
 const PREFERRED_PROBES: [&str; 5] = [
@@ -42,12 +55,16 @@ pub struct StudyRequest {
     pub scene: String,
     /// Methods to compare.
     pub methods: Vec<Method>,
+    /// Elements to run every method on (empty: the scene's element).
+    pub elements: Vec<TetElement>,
     /// `KEY=V1,V2,...` over mesh resolutions (default `res=1,2,4,8`).
     pub sweep: Option<String>,
     /// The probe to measure (default: the scene's deflection probe).
     pub probe: Option<String>,
-    /// The method whose extrapolation is the reference (default: the best-converging).
-    pub reference: Option<Method>,
+    /// Where the reference comes from (default: the best-converging series).
+    pub reference: ReferenceSpec,
+    /// Skip runs with more unknowns than this (and the finer runs of their series).
+    pub max_unknowns: Option<usize>,
     /// `--set` overrides applied to every run.
     pub overrides: Vec<Override>,
     /// Output folder for `study.csv`, `study.md` and `study.png`.
@@ -56,11 +73,79 @@ pub struct StudyRequest {
     pub progress: bool,
 }
 
+/// Where the reference of a study comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum ReferenceSpec {
+    /// The extrapolation of the best-converging series.
+    #[default]
+    Best,
+    /// The extrapolation of one method's series: on `element`, or, when `None`, the
+    /// best-converging of that method's series.
+    Series {
+        /// The method.
+        method: Method,
+        /// The element, if the method runs on several.
+        element: Option<TetElement>,
+    },
+    /// A value known from elsewhere (an independent, finer computation).
+    Value {
+        /// The reference value of the probe (finite, not zero: errors are relative to it).
+        value: f64,
+        /// Its relative uncertainty (0 when taken as exact): levels finer than this are not
+        /// resolved.
+        relative_uncertainty: f64,
+    },
+}
+
+impl ReferenceSpec {
+    /// Parses `--reference METHOD[/ELEMENT]`.
+    pub fn parse_series(text: &str) -> Result<ReferenceSpec, SceneError> {
+        let (method, element) = match text.trim().split_once('/') {
+            Some((m, e)) => (m.trim(), Some(parse_element(e.trim())?)),
+            None => (text.trim(), None),
+        };
+        Ok(ReferenceSpec::Series {
+            method: method.parse()?,
+            element,
+        })
+    }
+}
+
+/// Parses one element name (`tet4`, `tet10`).
+pub fn parse_element(name: &str) -> Result<TetElement, SceneError> {
+    TetElement::from_name(name).ok_or_else(|| {
+        SceneError::Usage(format!(
+            "unknown element '{name}' (valid: {})",
+            TetElement::ALL.map(TetElement::name).join(", ")
+        ))
+    })
+}
+
+/// Parses a comma-separated element list (`--elements tet4,tet10`).
+pub fn parse_elements(list: &str) -> Result<Vec<TetElement>, SceneError> {
+    list.split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(parse_element)
+        .collect()
+}
+
+/// The label of a series: `METHOD/ELEMENT`, or `METHOD` alone when the study has one element.
+fn series_label(method: &str, element: &str, several_elements: bool) -> String {
+    if several_elements {
+        format!("{method}/{element}")
+    } else {
+        method.to_string()
+    }
+}
+
 /// One run of the study.
 #[derive(Debug, Clone)]
 pub struct StudyRun {
     /// Method name.
     pub method: String,
+    /// Element name (`tet4`, `tet10`).
+    pub element: String,
     /// The swept value as given.
     pub label: String,
     /// The swept value as a number (the resolution; `h = 1 / resolution`).
@@ -83,11 +168,13 @@ impl StudyRun {
     }
 }
 
-/// A Richardson extrapolation from three runs of one method.
+/// A Richardson extrapolation from three runs of one series.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Richardson {
     /// The method.
     pub method: String,
+    /// The element.
+    pub element: String,
     /// Resolutions of the three runs, coarse to fine.
     pub resolutions: [f64; 3],
     /// Their probe values.
@@ -146,6 +233,62 @@ pub fn richardson(points: [(f64, f64); 3]) -> Option<(f64, f64)> {
     Some((p, f[2] - c * h[2].powf(p)))
 }
 
+/// The reference a study measures errors against.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Reference {
+    /// The extrapolation of one series.
+    Extrapolated(Richardson),
+    /// A value given with the study (`--reference-value`).
+    Given {
+        /// The value.
+        value: f64,
+        /// Its relative uncertainty.
+        relative_uncertainty: f64,
+    },
+}
+
+impl Reference {
+    /// The reference value of the probe.
+    pub fn value(&self) -> f64 {
+        match self {
+            Reference::Extrapolated(r) => r.limit,
+            Reference::Given { value, .. } => *value,
+        }
+    }
+
+    /// Its relative uncertainty: the extrapolation's relative estimate, or the given one.
+    pub fn relative_uncertainty(&self) -> f64 {
+        match self {
+            Reference::Extrapolated(r) => r.relative_estimate(),
+            Reference::Given {
+                relative_uncertainty,
+                ..
+            } => *relative_uncertainty,
+        }
+    }
+
+    /// The extrapolation, if the reference is one.
+    pub fn extrapolation(&self) -> Option<&Richardson> {
+        match self {
+            Reference::Extrapolated(r) => Some(r),
+            Reference::Given { .. } => None,
+        }
+    }
+}
+
+/// A run left out by `--max-unknowns`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Skipped {
+    /// Method name.
+    pub method: String,
+    /// Element name.
+    pub element: String,
+    /// The swept value as given.
+    pub label: String,
+    /// Its unknowns, if counted (a finer run of a series already over the limit is not).
+    pub unknowns: Option<usize>,
+}
+
 /// The result of a study.
 #[derive(Debug, Clone)]
 pub struct Study {
@@ -155,12 +298,16 @@ pub struct Study {
     pub sweep_key: String,
     /// The probe measured.
     pub probe: String,
-    /// Every run, method-major, coarse to fine.
+    /// Every run, series by series (method-major, then element), coarse to fine.
     pub runs: Vec<StudyRun>,
-    /// The extrapolation of every method that allowed one.
+    /// The extrapolation of every series that allowed one.
     pub extrapolations: Vec<Richardson>,
-    /// The reference (one of `extrapolations`).
-    pub reference: Option<Richardson>,
+    /// The reference: given, or one of `extrapolations`.
+    pub reference: Option<Reference>,
+    /// Runs left out by `--max-unknowns`, with the limit.
+    pub skipped: Vec<Skipped>,
+    /// The `--max-unknowns` limit, if any.
+    pub max_unknowns: Option<usize>,
 }
 
 /// Runs the study. Bad names or values fail before any run; runs that do not converge are
@@ -194,6 +341,23 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
                 SceneError::Usage(format!("scene {} has no probe to study", base.name))
             })?,
     };
+    let mut methods: Vec<Method> = Vec::new();
+    for m in &request.methods {
+        if !methods.contains(m) {
+            methods.push(*m);
+        }
+    }
+    let mut elements: Vec<TetElement> = Vec::new();
+    for e in &request.elements {
+        if !elements.contains(e) {
+            elements.push(*e);
+        }
+    }
+    let explicit_elements = !elements.is_empty();
+    if !explicit_elements {
+        elements.push(base.element());
+    }
+    check_reference(&request.reference, &methods, &elements)?;
     let (key, values) = parse_sweep(request.sweep.as_deref().unwrap_or("res=1,2,4,8"))?;
     let mut levels = Vec::new();
     for v in &values {
@@ -209,22 +373,58 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
     }
     levels.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut plans = Vec::new();
-    for method in &request.methods {
-        for (r, v) in &levels {
-            let mut overrides = request.overrides.clone();
-            overrides.push(Override::new(
-                "method",
-                toml::Value::String(method.name().into()),
-            ));
-            overrides.push(Override::new(key.clone(), v.clone()));
-            let scene = source.load(None, &overrides)?;
-            let label = Override::new("", v.clone()).display_value();
-            plans.push((method.name().to_string(), label, *r, overrides, scene));
+    let mut skipped = Vec::new();
+    for method in &methods {
+        for element in &elements {
+            let mut over_limit = false;
+            for (r, v) in &levels {
+                let mut overrides = request.overrides.clone();
+                overrides.push(Override::new(
+                    "method",
+                    toml::Value::String(method.name().into()),
+                ));
+                if explicit_elements {
+                    overrides.push(Override::new(
+                        "element",
+                        toml::Value::String(element.name().into()),
+                    ));
+                }
+                overrides.push(Override::new(key.clone(), v.clone()));
+                let scene = source.load(None, &overrides)?;
+                let label = Override::new("", v.clone()).display_value();
+                if let Some(limit) = request.max_unknowns {
+                    // Finer runs of a series only grow: count until one is over the limit.
+                    let unknowns = if over_limit {
+                        None
+                    } else {
+                        let built = crate::problem::build(&scene)?;
+                        Some(Simulation::new(built.problem, built.settings)?.num_dofs())
+                    };
+                    if over_limit || unknowns.is_some_and(|u| u > limit) {
+                        over_limit = true;
+                        skipped.push(Skipped {
+                            method: method.name().to_string(),
+                            element: element.name().to_string(),
+                            label,
+                            unknowns,
+                        });
+                        continue;
+                    }
+                }
+                plans.push((
+                    method.name().to_string(),
+                    element.name().to_string(),
+                    label,
+                    *r,
+                    overrides,
+                    scene,
+                ));
+            }
         }
     }
     let out = request.out.as_deref().map(OutputDir::create).transpose()?;
     let mut runs = Vec::new();
-    for (method, label, resolution, overrides, scene) in plans {
+    for (method, element, label, resolution, overrides, scene) in plans {
         let options = RunOptions {
             out: None,
             progress: request.progress,
@@ -245,6 +445,7 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
             .filter(|v| v.is_finite());
         runs.push(StudyRun {
             method,
+            element,
             label,
             resolution,
             result,
@@ -252,7 +453,9 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
             error: None,
         });
     }
-    let study = Study::from_runs(base.name.clone(), key, probe, runs, request.reference)?;
+    let mut study = Study::from_runs(base.name.clone(), key, probe, runs, request.reference)?;
+    study.skipped = skipped;
+    study.max_unknowns = request.max_unknowns;
     let written = match out {
         Some(dir) => {
             write_file(&dir.path().join("study.csv"), study.to_csv().as_bytes())?;
@@ -265,16 +468,90 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
     Ok((study, written))
 }
 
+/// Checks a reference request against the study's methods and elements, before any run.
+fn check_reference(
+    reference: &ReferenceSpec,
+    methods: &[Method],
+    elements: &[TetElement],
+) -> Result<(), SceneError> {
+    match *reference {
+        ReferenceSpec::Best => Ok(()),
+        ReferenceSpec::Series { method, element } => {
+            if !methods.contains(&method) {
+                return Err(SceneError::Usage(format!(
+                    "--reference {}: the study does not run that method (--methods {})",
+                    method.name(),
+                    methods
+                        .iter()
+                        .map(|m| m.name())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                )));
+            }
+            match element {
+                Some(e) if !elements.contains(&e) => Err(SceneError::Usage(format!(
+                    "--reference {}/{}: the study does not run that element (elements: {})",
+                    method.name(),
+                    e.name(),
+                    elements
+                        .iter()
+                        .map(|e| e.name())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                ))),
+                _ => Ok(()),
+            }
+        }
+        ReferenceSpec::Value {
+            value,
+            relative_uncertainty,
+        } => {
+            if !(value.is_finite() && value != 0.0) {
+                return Err(SceneError::Usage(format!(
+                    "--reference-value {value}: errors are relative to it, so it must be finite and not zero"
+                )));
+            }
+            if !(relative_uncertainty.is_finite() && relative_uncertainty >= 0.0) {
+                return Err(SceneError::Usage(format!(
+                    "--reference-uncertainty {relative_uncertainty}: a relative uncertainty is finite and not negative"
+                )));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Seconds to three significant digits (`0.0183 s`, `1.15 s`, `36.2 s`, `341 s`).
+fn seconds(t: f64) -> String {
+    if !t.is_finite() || t <= 0.0 {
+        return format!("{t} s");
+    }
+    let digits = (2 - t.log10().floor() as i32).max(0) as usize;
+    format!("{t:.digits$} s")
+}
+
+/// A relative error as a percentage with two decimals, or three significant digits below
+/// 0.1% (`12.34%`, `0.0512%`).
+fn percent(e: f64) -> String {
+    let p = 100.0 * e;
+    if p > 0.0 && p < 0.1 {
+        let digits = (2 - p.log10().floor() as i32).max(0) as usize;
+        format!("{p:.digits$}%")
+    } else {
+        format!("{p:.2}%")
+    }
+}
+
 impl Study {
-    /// The study of finished runs (method-major, coarse to fine): extrapolates every method
-    /// with three converged runs, takes `wanted`'s extrapolation (or the best-converging one)
-    /// as the reference and measures every run's error against it.
+    /// The study of finished runs (series by series, coarse to fine): extrapolates every
+    /// series with three converged runs, takes the reference `wanted` asks for and measures
+    /// every run's error against it.
     pub fn from_runs(
         scene: String,
         sweep_key: String,
         probe: String,
         runs: Vec<StudyRun>,
-        wanted: Option<Method>,
+        wanted: ReferenceSpec,
     ) -> Result<Study, SceneError> {
         let mut study = Study {
             scene,
@@ -283,33 +560,64 @@ impl Study {
             runs,
             extrapolations: Vec::new(),
             reference: None,
+            skipped: Vec::new(),
+            max_unknowns: None,
         };
         study.extrapolate(wanted)?;
         Ok(study)
     }
 
-    /// Converged (resolution, value) pairs of one method, coarse to fine.
-    fn series(&self, method: &str) -> Vec<(f64, f64)> {
+    /// Whether the study runs more than one element (series are then labelled
+    /// `METHOD/ELEMENT`).
+    pub fn several_elements(&self) -> bool {
         self.runs
             .iter()
-            .filter(|r| r.method == method)
+            .map(|r| &r.element)
+            .chain(self.skipped.iter().map(|s| &s.element))
+            .any(|e| self.runs.first().is_some_and(|f| f.element != *e))
+    }
+
+    /// The label of the series of `method` on `element`.
+    pub fn label(&self, method: &str, element: &str) -> String {
+        series_label(method, element, self.several_elements())
+    }
+
+    /// The label of a run's series.
+    pub fn run_label(&self, run: &StudyRun) -> String {
+        self.label(&run.method, &run.element)
+    }
+
+    /// Converged (resolution, value) pairs of one series, coarse to fine.
+    fn series(&self, method: &str, element: &str) -> Vec<(f64, f64)> {
+        self.runs
+            .iter()
+            .filter(|r| r.method == method && r.element == element)
             .filter_map(|r| r.value.map(|v| (r.resolution, v)))
             .collect()
     }
 
-    fn methods(&self) -> Vec<String> {
-        let mut m: Vec<String> = Vec::new();
+    /// The (method, element) pairs, in the order of the runs.
+    pub fn series_keys(&self) -> Vec<(String, String)> {
+        let mut keys: Vec<(String, String)> = Vec::new();
         for r in &self.runs {
-            if !m.contains(&r.method) {
-                m.push(r.method.clone());
+            if !keys.iter().any(|(m, e)| *m == r.method && *e == r.element) {
+                keys.push((r.method.clone(), r.element.clone()));
             }
         }
-        m
+        keys
     }
 
-    fn extrapolate(&mut self, wanted: Option<Method>) -> Result<(), SceneError> {
-        for method in self.methods() {
-            let s = self.series(&method);
+    /// The series labels, in the order of the runs.
+    pub fn series_labels(&self) -> Vec<String> {
+        self.series_keys()
+            .iter()
+            .map(|(m, e)| self.label(m, e))
+            .collect()
+    }
+
+    fn extrapolate(&mut self, wanted: ReferenceSpec) -> Result<(), SceneError> {
+        for (method, element) in self.series_keys() {
+            let s = self.series(&method, &element);
             if s.len() < 3 {
                 continue;
             }
@@ -323,6 +631,7 @@ impl Study {
                 .map(|(_, l)| (limit - l).abs());
             self.extrapolations.push(Richardson {
                 method: method.clone(),
+                element: element.clone(),
                 resolutions: [s[n - 3].0, s[n - 2].0, s[n - 1].0],
                 values: [s[n - 3].1, s[n - 2].1, s[n - 1].1],
                 order,
@@ -331,29 +640,44 @@ impl Study {
                 previous_gap,
             });
         }
-        self.reference = match wanted {
-            Some(m) => Some(
-                self.extrapolations
-                    .iter()
-                    .find(|e| e.method == m.name())
-                    .cloned()
-                    .ok_or_else(|| {
-                        SceneError::Usage(format!(
-                            "{} cannot be extrapolated: it needs three converged runs whose values converge monotonically",
-                            m.name()
-                        ))
-                    })?,
-            ),
-            None => self
-                .extrapolations
-                .iter()
+        let best = |candidates: Vec<&Richardson>| {
+            candidates
+                .into_iter()
                 .min_by(|a, b| a.relative_estimate().total_cmp(&b.relative_estimate()))
-                .cloned(),
+                .cloned()
+                .map(Reference::Extrapolated)
+        };
+        self.reference = match wanted {
+            ReferenceSpec::Best => best(self.extrapolations.iter().collect()),
+            ReferenceSpec::Series { method, element } => {
+                let candidates: Vec<&Richardson> = self
+                    .extrapolations
+                    .iter()
+                    .filter(|e| e.method == method.name())
+                    .filter(|e| element.is_none_or(|el| e.element == el.name()))
+                    .collect();
+                let name = match element {
+                    Some(e) => format!("{}/{}", method.name(), e.name()),
+                    None => method.name().to_string(),
+                };
+                Some(best(candidates).ok_or_else(|| {
+                    SceneError::Usage(format!(
+                        "{name} cannot be extrapolated: it needs three converged runs whose values converge monotonically"
+                    ))
+                })?)
+            }
+            ReferenceSpec::Value {
+                value,
+                relative_uncertainty,
+            } => Some(Reference::Given {
+                value,
+                relative_uncertainty,
+            }),
         };
         if let Some(reference) = &self.reference {
-            let limit = reference.limit;
+            let value = reference.value();
             for run in &mut self.runs {
-                run.error = run.value.map(|v| (v - limit).abs() / limit.abs());
+                run.error = run.value.map(|v| (v - value).abs() / value.abs());
             }
         }
         Ok(())
@@ -364,16 +688,41 @@ impl Study {
     pub fn resolves(&self, level: f64) -> bool {
         self.reference
             .as_ref()
-            .is_some_and(|r| r.relative_estimate() <= level)
+            .is_some_and(|r| r.relative_uncertainty() <= level)
     }
 
-    /// Index of the fastest converged run with error at most `level`, of `method` if given.
-    pub fn fastest(&self, level: f64, method: Option<&str>) -> Option<usize> {
+    /// The relative distance of the series labelled `series`' own extrapolated limit from the
+    /// reference, if the series converges elsewhere at `level`: when even the nearest reading
+    /// of both (the distance minus the extrapolation's estimate and the reference's
+    /// uncertainty) is farther than `level`. Its runs within `level` are then crossings on the
+    /// way to another limit (a method that solves a different model, such as `zonal` with its
+    /// own penalty), which no resolution can be chosen in advance to hit, and are not counted
+    /// as reaching the level.
+    pub fn converges_elsewhere(&self, level: f64, series: &str) -> Option<f64> {
+        let reference = self.reference.as_ref()?;
+        let value = reference.value();
+        let e = self
+            .extrapolations
+            .iter()
+            .find(|e| self.label(&e.method, &e.element) == series)?;
+        let distance = (e.limit - value).abs() / value.abs();
+        (distance - e.relative_estimate() - reference.relative_uncertainty() > level)
+            .then_some(distance)
+    }
+
+    /// Index of the fastest converged run with error at most `level`, of the series labelled
+    /// `series` if given (see [`Study::label`]), leaving out series that converge elsewhere
+    /// (see [`Study::converges_elsewhere`]).
+    pub fn fastest(&self, level: f64, series: Option<&str>) -> Option<usize> {
         self.runs
             .iter()
             .enumerate()
-            .filter(|(_, r)| method.is_none_or(|m| r.method == m))
+            .filter(|(_, r)| series.is_none_or(|s| self.run_label(r) == s))
             .filter(|(_, r)| r.error.is_some_and(|e| e <= level))
+            .filter(|(_, r)| {
+                self.converges_elsewhere(level, &self.run_label(r))
+                    .is_none()
+            })
             .filter_map(|(i, r)| r.wall_time().map(|t| (i, t)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(i, _)| i)
@@ -382,6 +731,7 @@ impl Study {
     fn header(&self) -> Vec<String> {
         [
             "method",
+            "element",
             self.sweep_key.as_str(),
             "tets",
             "dofs",
@@ -396,11 +746,15 @@ impl Study {
         .to_vec()
     }
 
+    /// Column of the probe in [`Study::header`].
+    const PROBE_COLUMN: usize = 9;
+
     fn rows(&self) -> Vec<Vec<String>> {
+        let width = self.header().len();
         self.runs
             .iter()
             .map(|run| {
-                let mut c = vec![run.method.clone(), run.label.clone()];
+                let mut c = vec![run.method.clone(), run.element.clone(), run.label.clone()];
                 match &run.result {
                     Ok(r) => {
                         c.push(r.tets.to_string());
@@ -414,7 +768,7 @@ impl Study {
                     }
                     Err(e) => {
                         c.push(format!("error: {e}"));
-                        c.resize(10, String::new());
+                        c.resize(width, String::new());
                     }
                 }
                 c
@@ -422,14 +776,39 @@ impl Study {
             .collect()
     }
 
+    /// One line per run left out by `--max-unknowns`.
+    fn skipped_lines(&self) -> String {
+        let mut s = String::new();
+        for k in &self.skipped {
+            let _ = writeln!(
+                s,
+                "skipped {} at {} = {}: {} (--max-unknowns {})",
+                self.label(&k.method, &k.element),
+                self.sweep_key,
+                k.label,
+                match k.unknowns {
+                    Some(u) => format!("{u} unknowns"),
+                    None => "a coarser run of the series is already over the limit".into(),
+                },
+                self.max_unknowns.map_or("?".into(), |m| m.to_string())
+            );
+        }
+        s
+    }
+
     /// The reference and the fastest runs per error level, for people.
     pub fn summary(&self) -> String {
         let mut s = String::new();
+        let given = self
+            .reference
+            .as_ref()
+            .filter(|r| r.extrapolation().is_none())
+            .map(Reference::value);
         for e in &self.extrapolations {
             let _ = writeln!(
                 s,
-                "extrapolation of {} from {} = {:?}: {:?} -> {:.6e} (observed order {:.2}; |limit - finest| = {:.2e} ({:.3}%){})",
-                e.method,
+                "extrapolation of {} from {} = {:?}: {:?} -> {:.6e} (observed order {:.2}; |limit - finest| = {:.2e} ({:.3}%){}{})",
+                self.label(&e.method, &e.element),
                 self.sweep_key,
                 e.resolutions,
                 e.values,
@@ -439,25 +818,39 @@ impl Study {
                 100.0 * e.finest_gap / e.limit.abs(),
                 e.previous_gap
                     .map(|g| format!(", |limit - previous limit| = {g:.2e} ({:.3}%)", 100.0 * g / e.limit.abs()))
+                    .unwrap_or_default(),
+                given
+                    .map(|v| format!("; {:.3}% from the reference", 100.0 * (e.limit - v).abs() / v.abs()))
                     .unwrap_or_default()
             );
         }
         match &self.reference {
-            Some(r) => {
+            Some(Reference::Extrapolated(r)) => {
                 let _ = writeln!(
                     s,
                     "reference {} = {:.6e} (Richardson extrapolation of {}), estimated error {:.2e} ({:.3}%)",
                     self.probe,
                     r.limit,
-                    r.method,
+                    self.label(&r.method, &r.element),
                     r.estimate(),
                     100.0 * r.relative_estimate()
+                );
+            }
+            Some(Reference::Given {
+                value,
+                relative_uncertainty,
+            }) => {
+                let _ = writeln!(
+                    s,
+                    "reference {} = {value:.6e} (given), relative uncertainty {:.3}%",
+                    self.probe,
+                    100.0 * relative_uncertainty
                 );
             }
             None => {
                 let _ = writeln!(
                     s,
-                    "no reference: no method has three converged runs that converge monotonically"
+                    "no reference: no series has three converged runs that converge monotonically"
                 );
                 return s;
             }
@@ -468,7 +861,7 @@ impl Study {
                     s,
                     "error <= {:.0}%: not resolved (the reference is uncertain by {:.2}%)",
                     100.0 * level,
-                    100.0 * r.relative_estimate()
+                    100.0 * r.relative_uncertainty()
                 );
                 continue;
             }
@@ -477,22 +870,27 @@ impl Study {
                 continue;
             };
             let b = &self.runs[best];
+            let best_label = self.run_label(b);
             let t = b.wall_time().unwrap_or(f64::NAN);
             let mut line = format!(
                 "error <= {:.0}%: fastest {} at {} = {} ({:.3} s, error {:.2}%)",
                 100.0 * level,
-                b.method,
+                best_label,
                 self.sweep_key,
                 b.label,
                 t,
                 100.0 * b.error.unwrap_or(f64::NAN)
             );
             let others: Vec<String> = self
-                .methods()
+                .series_labels()
                 .into_iter()
-                .filter(|m| *m != b.method)
-                .map(|m| match self.fastest(level, Some(&m)) {
-                    Some(i) => {
+                .filter(|m| *m != best_label)
+                .map(|m| match (self.fastest(level, Some(&m)), self.converges_elsewhere(level, &m)) {
+                    (None, Some(d)) => format!(
+                        "{m} converges elsewhere (its extrapolated limit is {:.2}% from the reference)",
+                        100.0 * d
+                    ),
+                    (Some(i), _) => {
                         let o = &self.runs[i];
                         let ot = o.wall_time().unwrap_or(f64::NAN);
                         format!(
@@ -503,7 +901,7 @@ impl Study {
                             ot / t
                         )
                     }
-                    None => format!("{m} does not reach it"),
+                    (None, None) => format!("{m} does not reach it"),
                 })
                 .collect();
             if !others.is_empty() {
@@ -545,7 +943,7 @@ impl Study {
                     let _ = writeln!(
                         out,
                         "{} at {} = {}: stopped at step {}: {e}",
-                        run.method,
+                        self.run_label(run),
                         self.sweep_key,
                         run.label,
                         r.failed_step.unwrap_or(0)
@@ -553,18 +951,19 @@ impl Study {
                 }
             }
         }
+        out += &self.skipped_lines();
         out + &self.summary()
     }
 
     /// Every run as CSV, with the reference in the last columns.
     pub fn to_csv(&self) -> String {
         let mut header = self.header();
-        header[8] = format!("probe:{}", self.probe);
+        header[Self::PROBE_COLUMN] = format!("probe:{}", self.probe);
         header.push("reference".into());
         let reference = self
             .reference
             .as_ref()
-            .map_or(String::new(), |r| format!("{:.9e}", r.limit));
+            .map_or(String::new(), |r| format!("{:.9e}", r.value()));
         let mut out = String::new();
         let _ = writeln!(out, "{}", header.join(","));
         for mut row in self.rows() {
@@ -584,7 +983,105 @@ impl Study {
         out
     }
 
-    /// The table and summary as Markdown.
+    /// Error against wall time as a Markdown table: one row per swept value, one column per
+    /// series, each cell `error, time (unknowns)`; runs that did not converge say so, skipped
+    /// and missing runs are blank.
+    pub fn error_table(&self) -> String {
+        let keys = self.series_keys();
+        let mut values: Vec<(f64, String)> = Vec::new();
+        for r in &self.runs {
+            if !values.iter().any(|(_, l)| *l == r.label) {
+                values.push((r.resolution, r.label.clone()));
+            }
+        }
+        values.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut out = format!("| {} |", self.sweep_key);
+        for (m, e) in &keys {
+            out += &format!(" {} |", self.label(m, e));
+        }
+        out += "\n|---|";
+        out += &"---|".repeat(keys.len());
+        out += "\n";
+        for (_, label) in &values {
+            out += &format!("| {label} |");
+            for (m, e) in &keys {
+                let run = self
+                    .runs
+                    .iter()
+                    .find(|r| r.method == *m && r.element == *e && r.label == *label);
+                let cell = match run.map(|r| (r, &r.result)) {
+                    None => String::new(),
+                    Some((_, Err(_))) => "error".into(),
+                    Some((_, Ok(res))) if !res.converged => {
+                        format!("not converged, {}", seconds(res.wall_time_s))
+                    }
+                    Some((r, Ok(res))) => format!(
+                        "{}, {} ({} unknowns)",
+                        r.error.map_or("-".into(), percent),
+                        seconds(res.wall_time_s),
+                        res.dofs
+                    ),
+                };
+                out += &format!(" {cell} |");
+            }
+            out += "\n";
+        }
+        out
+    }
+
+    /// The fastest run of every series within each error level, as a Markdown table: one row
+    /// per level, the overall fastest first, then each series' own fastest run.
+    pub fn fastest_table(&self) -> String {
+        let labels = self.series_labels();
+        let mut out = "| error | fastest |".to_string();
+        for l in &labels {
+            out += &format!(" {l} |");
+        }
+        out += "\n|---|---|";
+        out += &"---|".repeat(labels.len());
+        out += "\n";
+        let cell = |i: usize| {
+            let r = &self.runs[i];
+            format!(
+                "{} {}: {} ({})",
+                self.sweep_key,
+                r.label,
+                seconds(r.wall_time().unwrap_or(f64::NAN)),
+                r.error.map_or("-".into(), percent)
+            )
+        };
+        for level in LEVELS {
+            out += &format!("| {:.0}% |", 100.0 * level);
+            if !self.resolves(level) {
+                out += " not resolved |";
+                out += &" |".repeat(labels.len());
+                out += "\n";
+                continue;
+            }
+            match self.fastest(level, None) {
+                Some(i) => {
+                    out += &format!(" **{}** at {} |", self.run_label(&self.runs[i]), cell(i))
+                }
+                None => out += " no run |",
+            }
+            for l in &labels {
+                match (
+                    self.fastest(level, Some(l)),
+                    self.converges_elsewhere(level, l),
+                ) {
+                    (Some(i), _) => out += &format!(" {} |", cell(i)),
+                    (None, Some(d)) => {
+                        out += &format!(" converges elsewhere (limit {} off) |", percent(d))
+                    }
+                    (None, None) => out += " not reached |",
+                }
+            }
+            out += "\n";
+        }
+        out
+    }
+
+    /// The tables and summary as Markdown.
     pub fn to_markdown(&self) -> String {
         let header = self.header();
         let mut out = format!("# Study: {} ({})\n\n", self.scene, self.probe);
@@ -594,14 +1091,30 @@ impl Study {
             let cells: Vec<String> = row.iter().map(|c| c.replace('|', "\\|")).collect();
             let _ = writeln!(out, "| {} |", cells.join(" | "));
         }
+        out += "\n## Error against wall time\n\n";
+        out += &self.error_table();
+        out += "\n## Fastest run within each error level\n\n";
+        out += &self.fastest_table();
         out += "\n```text\n";
+        out += &self.skipped_lines();
         out += &self.summary();
         out += "```\n";
         out
     }
 }
 
-/// Log-log plot of error (percent) against wall time, one curve per method, with the error
+/// A log-axis tick with as many decimals as its first significant digit needs (`0.001`,
+/// `0.05`, `10`).
+fn tick(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return format!("{v}");
+    }
+    let decimals = (-v.log10().floor()).max(0.0) as usize;
+    format!("{v:.decimals$}")
+}
+
+/// Log-log plot of error (percent) against wall time, one curve per series (a color per
+/// method, dashed for the second element), with the error
 /// levels as dashed lines and the fastest run for each level circled.
 pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
     crate::output::register_font();
@@ -635,18 +1148,27 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
     let root = BitMapBackend::new(path, (1000, 650)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
     let title = match &study.reference {
-        Some(r) => format!(
+        Some(Reference::Extrapolated(r)) => format!(
             "{}: error of {} against time (reference {:.4e} from {}, est. error {:.2}%)",
             study.scene,
             study.probe,
             r.limit,
-            r.method,
+            study.label(&r.method, &r.element),
             100.0 * r.relative_estimate()
+        ),
+        Some(Reference::Given {
+            value,
+            relative_uncertainty,
+        }) => format!(
+            "{}: error of {} against time (reference {value:.4e} given, uncertain by {:.2}%)",
+            study.scene,
+            study.probe,
+            100.0 * relative_uncertainty
         ),
         None => format!("{}: no reference", study.scene),
     };
     let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
+        .caption(title, ("sans-serif", 17))
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -656,14 +1178,15 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
         .configure_mesh()
         .x_desc("wall time (s)")
         .y_desc("relative error (%)")
-        .x_label_formatter(&|v| format!("{v:.2}"))
-        .y_label_formatter(&|v| format!("{v:.2}"))
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(|e| plot_error(path, e))?;
-    for (level, color) in LEVELS
-        .iter()
-        .zip([RGBColor(120, 120, 120), RGBColor(170, 170, 170)])
-    {
+    for (level, color) in LEVELS.iter().zip([
+        RGBColor(90, 90, 90),
+        RGBColor(130, 130, 130),
+        RGBColor(170, 170, 170),
+    ]) {
         let y = 100.0 * level;
         chart
             .draw_series(DashedLineSeries::new(
@@ -674,33 +1197,61 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
             ))
             .map_err(|e| plot_error(path, e))?;
     }
-    for (k, method) in study.methods().iter().enumerate() {
+    // One color per method; the first element solid with circles, the others dashed with
+    // triangles.
+    let keys = study.series_keys();
+    let mut methods: Vec<&str> = Vec::new();
+    let mut elements: Vec<&str> = Vec::new();
+    for (m, e) in &keys {
+        if !methods.contains(&m.as_str()) {
+            methods.push(m);
+        }
+        if !elements.contains(&e.as_str()) {
+            elements.push(e);
+        }
+    }
+    for (method, element) in &keys {
+        let k = methods.iter().position(|m| m == method).unwrap_or(0);
+        let solid = elements.first() == Some(&element.as_str());
         let color = Palette99::pick(k).to_rgba();
         let series: Vec<(f64, f64, String)> = points
             .iter()
-            .filter(|p| study.runs[p.0].method == *method)
+            .filter(|p| study.runs[p.0].method == *method && study.runs[p.0].element == *element)
             .map(|p| (p.1, err(p.2), study.runs[p.0].label.clone()))
             .collect();
         if series.is_empty() {
             continue;
         }
-        chart
-            .draw_series(LineSeries::new(
-                series.iter().map(|p| (p.0, p.1)),
-                color.stroke_width(2),
-            ))
+        let line = series.iter().map(|p| (p.0, p.1));
+        let drawn = if solid {
+            chart.draw_series(LineSeries::new(line, color.stroke_width(2)))
+        } else {
+            chart.draw_series(DashedLineSeries::new(line, 10, 5, color.stroke_width(2)))
+        };
+        drawn
             .map_err(|e| plot_error(path, e))?
-            .label(method.clone())
+            .label(study.label(method, element))
             .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                if solid {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                } else {
+                    PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
+                }
             });
-        chart
-            .draw_series(
+        if solid {
+            chart.draw_series(
                 series
                     .iter()
                     .map(|p| Circle::new((p.0, p.1), 4, color.filled())),
             )
-            .map_err(|e| plot_error(path, e))?;
+        } else {
+            chart.draw_series(
+                series
+                    .iter()
+                    .map(|p| TriangleMarker::new((p.0, p.1), 6, color.filled())),
+            )
+        }
+        .map_err(|e| plot_error(path, e))?;
         chart
             .draw_series(series.iter().map(|p| {
                 Text::new(
@@ -711,29 +1262,41 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
             }))
             .map_err(|e| plot_error(path, e))?;
     }
+    // The fastest run of each resolved level, circled once with every level it wins.
+    let mut marked: Vec<(usize, Vec<f64>)> = Vec::new();
     for level in LEVELS.into_iter().filter(|&l| study.resolves(l)) {
         if let Some(i) = study.fastest(level, None) {
-            let r = &study.runs[i];
-            let (t, e) = (
-                r.wall_time().unwrap_or(t_lo),
-                err(100.0 * r.error.unwrap_or(0.0)),
-            );
-            chart
-                .draw_series([Circle::new((t, e), 11, BLACK.stroke_width(2))])
-                .map_err(|e| plot_error(path, e))?;
-            chart
-                .draw_series([Text::new(
-                    format!("fastest <= {:.0}%", 100.0 * level),
-                    (t, e),
-                    ("sans-serif", 15).into_font().color(&BLACK).pos(
-                        plotters::style::text_anchor::Pos::new(
-                            plotters::style::text_anchor::HPos::Right,
-                            plotters::style::text_anchor::VPos::Bottom,
-                        ),
-                    ),
-                )])
-                .map_err(|e| plot_error(path, e))?;
+            match marked.iter_mut().find(|(j, _)| *j == i) {
+                Some((_, levels)) => levels.push(level),
+                None => marked.push((i, vec![level])),
+            }
         }
+    }
+    for (i, levels) in marked {
+        let r = &study.runs[i];
+        let (t, e) = (
+            r.wall_time().unwrap_or(t_lo),
+            err(100.0 * r.error.unwrap_or(0.0)),
+        );
+        let levels: Vec<String> = levels
+            .iter()
+            .map(|l| format!("{:.0}%", 100.0 * l))
+            .collect();
+        chart
+            .draw_series([Circle::new((t, e), 11, BLACK.stroke_width(2))])
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .draw_series([Text::new(
+                format!("fastest <= {}", levels.join(", ")),
+                (t, e),
+                ("sans-serif", 15).into_font().color(&BLACK).pos(
+                    plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Right,
+                        plotters::style::text_anchor::VPos::Bottom,
+                    ),
+                ),
+            )])
+            .map_err(|e| plot_error(path, e))?;
     }
     finish_plot(
         &mut chart,

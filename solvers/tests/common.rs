@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 use faer::sparse::SparseColMat;
+use isochor_mesh::element::ElementMesh;
 use isochor_mesh::{generate::box_grid, TetMesh, Vec3};
 use isochor_solvers::linear::{SparsityPattern, Triangle};
 use isochor_solvers::{Dirichlet, Load, Material, Method, Motion, Problem};
@@ -27,6 +28,30 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
     let clamped = plane(&mesh, 0, 0.0);
     Problem {
         mesh: mesh.into(),
+        method,
+        material: Material::from_young_poisson(266e3, nu, 1070.0).unwrap(),
+        zones: None,
+        dirichlet: vec![Dirichlet {
+            nodes: clamped,
+            axes: [true; 3],
+            motion: Motion::Fixed,
+        }],
+        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0))],
+        obstacles: Vec::new(),
+    }
+}
+
+/// The cantilever of [`cantilever`] on 10-node tets: the same box grid promoted to quadratic
+/// tets, every node of the face `x = 0` (corners and mid-edge nodes) clamped. This is the
+/// `cantilever` scene with `element = "tet10"`.
+pub fn cantilever_tet10(res: usize, method: Method, nu: f64) -> Problem {
+    let size = Vec3::new(0.2, 0.05, 0.05);
+    let mesh = ElementMesh::quadratic(box_grid(Vec3::zeros(), size, [4 * res, res, res]).unwrap());
+    let clamped = (0..mesh.num_nodes())
+        .filter(|&v| mesh.nodes()[v].x.abs() < 1e-9)
+        .collect();
+    Problem {
+        mesh,
         method,
         material: Material::from_young_poisson(266e3, nu, 1070.0).unwrap(),
         zones: None,

@@ -14,7 +14,7 @@ use std::sync::Arc;
 /// The quadrature rule of the elastic energy on `mesh`: the one-point rule on 4-node tets
 /// (exact, `F` is constant); on 10-node tets the 4-point degree-2 rule when every element is
 /// straight-sided (the usual full integration of the quadratic tet: `F` is linear, and the
-/// patch test passes exactly), the 14-point degree-5 rule when the mesh has curved elements
+/// patch test passes exactly), the 15-point degree-5 rule when the mesh has curved elements
 /// (there `integral dN_a/dX dV` is a cubic that the degree-2 rule misses, so a homogeneous
 /// stretch would not be an equilibrium).
 pub fn elastic_rule(mesh: &ElementMesh) -> TetQuadrature {
