@@ -13,6 +13,22 @@ pub enum Compliance {
     Sparse(Vec<(usize, usize, f64)>),
 }
 
+impl Compliance {
+    /// The non-zero entries as `(row, col, value)` triplets (a diagonal one's on the
+    /// diagonal; a sparse one's as stored, both triangles): empty for hard constraints.
+    pub fn nonzero_entries(self) -> Vec<(usize, usize, f64)> {
+        match self {
+            Compliance::Diagonal(d) => d
+                .into_iter()
+                .enumerate()
+                .filter(|e| e.1 != 0.0)
+                .map(|(i, v)| (i, i, v))
+                .collect(),
+            Compliance::Sparse(t) => t.into_iter().filter(|e| e.2 != 0.0).collect(),
+        }
+    }
+}
+
 /// A set of `m` scalar constraints `phi(x) = C p` on the `3n` position DOFs
 /// (DOF `3 * vertex + axis`).
 ///

@@ -5,10 +5,9 @@
 #[path = "../tests/common.rs"]
 mod common;
 
-use common::cantilever;
+use common::{cantilever, per_iteration};
 use criterion::{criterion_group, criterion_main, Criterion};
 use isochor_solvers::{Method, RunSummary, Settings, Simulation, Stepping};
-use std::time::Duration;
 
 fn solve(res: usize, method: Method) -> (RunSummary, usize) {
     let mut sim = Simulation::new(cantilever(res, method, 0.4999), Settings::default())
@@ -18,18 +17,6 @@ fn solve(res: usize, method: Method) -> (RunSummary, usize) {
         .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
         .expect("the cantilever converges");
     (summary, dofs)
-}
-
-fn per_iteration(summary: &RunSummary) -> [Duration; 4] {
-    let n = summary.newton_iterations().max(1) as u32;
-    let mut t = [Duration::ZERO; 4];
-    for r in &summary.reports {
-        t[0] += r.timings.assembly;
-        t[1] += r.timings.factorization;
-        t[2] += r.timings.solve;
-        t[3] += r.wall_time;
-    }
-    t.map(|d| d / n)
 }
 
 fn bench(c: &mut Criterion) {

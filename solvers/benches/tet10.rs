@@ -22,10 +22,10 @@
 #[path = "../tests/common.rs"]
 mod common;
 
-use common::cantilever_tet10;
+use common::{cantilever_tet10, per_iteration};
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use faer::sparse::SparseColMat;
-use isochor_constraints::{exact_rule, Compliance, ConstraintSet, Measure, NodalConstraints};
+use isochor_constraints::{exact_rule, ConstraintSet, Measure, NodalConstraints};
 use isochor_energies::DistortionalNeoHookean;
 use isochor_mesh::Vec3;
 use isochor_solvers::linear::{KktOptions, KktSolver, ShiftSchedule, SparsityPattern, Triangle};
@@ -51,20 +51,6 @@ fn simulation(res: usize) -> Simulation {
 fn solve(mut sim: Simulation) -> RunSummary {
     sim.run(Stepping::QuasiStatic { steps: 1 }, |_| {})
         .expect("the cantilever converges")
-}
-
-/// Per-iteration means of the solver's own timings: assembly, factorization, solve, and the
-/// whole step.
-fn per_iteration(summary: &RunSummary) -> [Duration; 4] {
-    let n = summary.newton_iterations().max(1) as u32;
-    let mut t = [Duration::ZERO; 4];
-    for r in &summary.reports {
-        t[0] += r.timings.assembly;
-        t[1] += r.timings.factorization;
-        t[2] += r.timings.solve;
-        t[3] += r.wall_time;
-    }
-    t.map(|d| d / n)
 }
 
 /// Kept entries and fixed pattern of a matrix over the free DOFs (see the solver's `Layout`).
@@ -174,15 +160,8 @@ impl Iteration {
         let m = constraints.num_constraints();
         let jacobian_pairs = constraints.jacobian_pattern();
         let jacobian = Layout::new(&jacobian_pairs, Some, &dofs, Triangle::Full, m);
-        let compliance_entries: Vec<(usize, usize, f64)> = match constraints.compliance() {
-            Compliance::Diagonal(d) => d
-                .into_iter()
-                .enumerate()
-                .filter(|e| e.1 != 0.0)
-                .map(|(i, v)| (i, i, v))
-                .collect(),
-            Compliance::Sparse(t) => t.into_iter().filter(|e| e.2 != 0.0).collect(),
-        };
+        let compliance_entries: Vec<(usize, usize, f64)> =
+            constraints.compliance().nonzero_entries();
         let compliance = (!compliance_entries.is_empty()).then(|| {
             let triplets: Vec<_> = compliance_entries
                 .iter()

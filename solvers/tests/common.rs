@@ -6,8 +6,9 @@ use faer::sparse::SparseColMat;
 use isochor_mesh::element::ElementMesh;
 use isochor_mesh::{generate::box_grid, TetMesh, Vec3};
 use isochor_solvers::linear::{SparsityPattern, Triangle};
-use isochor_solvers::{Dirichlet, Load, Material, Method, Motion, Problem};
+use isochor_solvers::{Dirichlet, Load, Material, Method, Motion, Problem, RunSummary};
 use nalgebra::Matrix3;
+use std::time::Duration;
 
 /// Vertices of `mesh` with `coordinate[axis] == value` (to rounding).
 pub fn plane(mesh: &TetMesh, axis: usize, value: f64) -> Vec<usize> {
@@ -45,24 +46,13 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
 /// tets, every node of the face `x = 0` (corners and mid-edge nodes) clamped. This is the
 /// `cantilever` scene with `element = "tet10"`.
 pub fn cantilever_tet10(res: usize, method: Method, nu: f64) -> Problem {
-    let size = Vec3::new(0.2, 0.05, 0.05);
-    let mesh = ElementMesh::quadratic(box_grid(Vec3::zeros(), size, [4 * res, res, res]).unwrap());
-    let clamped = (0..mesh.num_nodes())
+    let mut problem = cantilever(res, method, nu);
+    let mesh = ElementMesh::quadratic(problem.mesh.into_corners());
+    problem.dirichlet[0].nodes = (0..mesh.num_nodes())
         .filter(|&v| mesh.nodes()[v].x.abs() < 1e-9)
         .collect();
-    Problem {
-        mesh,
-        method,
-        material: Material::from_young_poisson(266e3, nu, 1070.0).unwrap(),
-        zones: None,
-        dirichlet: vec![Dirichlet {
-            nodes: clamped,
-            axes: [true; 3],
-            motion: Motion::Fixed,
-        }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0))],
-        obstacles: Vec::new(),
-    }
+    problem.mesh = mesh;
+    problem
 }
 
 /// Mean `-u_y` over the free end face `x = length`.
@@ -151,4 +141,18 @@ pub fn p1_box(cells: [usize; 3]) -> P1Box {
         g,
         anchors,
     }
+}
+
+/// Per-iteration means of the solver's own timings over a run: assembly, factorization,
+/// solve, and the whole step.
+pub fn per_iteration(summary: &RunSummary) -> [Duration; 4] {
+    let n = summary.newton_iterations().max(1) as u32;
+    let mut t = [Duration::ZERO; 4];
+    for r in &summary.reports {
+        t[0] += r.timings.assembly;
+        t[1] += r.timings.factorization;
+        t[2] += r.timings.solve;
+        t[3] += r.wall_time;
+    }
+    t.map(|d| d / n)
 }

@@ -20,7 +20,6 @@ use crate::model::NonlinearScheme;
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::{IterationReport, LinearSolver, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
-use isochor_constraints::Compliance;
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, DVector};
 use std::time::Instant;
@@ -100,15 +99,8 @@ impl SaddleNewton {
             SolverError::InvalidProblem("saddle-point Newton without constraints".into())
         })?;
         let m = constraints.num_constraints();
-        let compliance_entries: Vec<(usize, usize, f64)> = match constraints.compliance() {
-            Compliance::Diagonal(d) => d
-                .into_iter()
-                .enumerate()
-                .filter(|e| e.1 != 0.0)
-                .map(|(i, v)| (i, i, v))
-                .collect(),
-            Compliance::Sparse(t) => t.into_iter().filter(|e| e.2 != 0.0).collect(),
-        };
+        let compliance_entries: Vec<(usize, usize, f64)> =
+            constraints.compliance().nonzero_entries();
         let compliance = if compliance_entries.is_empty() {
             None
         } else {
