@@ -24,8 +24,10 @@ pub enum SolverError {
     },
     #[error("the initial state is outside the domain of the energy: {0}")]
     InvalidInitialState(String),
-    #[error("Newton did not converge in {iterations} iterations (force residual {force_residual:e}, constraint residual {constraint_residual:e})")]
+    #[error("{solver} did not converge in {iterations} iterations (force residual {force_residual:e}, constraint residual {constraint_residual:e})")]
     NotConverged {
+        /// The iteration that ran out: "Newton", "saddle-point Newton" or "dual ascent".
+        solver: &'static str,
         iterations: usize,
         force_residual: f64,
         constraint_residual: f64,

@@ -14,7 +14,7 @@ use std::ops::RangeInclusive;
 use std::time::Instant;
 
 /// The message of `SolverError::NotConverged`: the iteration limit, with both residuals.
-const NOT_CONVERGED: &str = "Newton did not converge in";
+const NOT_CONVERGED: &str = "did not converge in";
 
 /// How a case must end.
 #[derive(Debug, Clone)]

@@ -152,6 +152,7 @@ pub fn solve(
         previous = Some((theta, direction));
     }
     Err(SolverError::NotConverged {
+        solver: "dual ascent",
         iterations: report.iterations.len(),
         force_residual: report.force_residual,
         constraint_residual: report.constraint_residual,

@@ -53,6 +53,7 @@ impl Newton {
             Err(SolverError::BoundaryUnreachable { iterations, gap })
         } else {
             Err(SolverError::NotConverged {
+                solver: "Newton",
                 iterations: system.settings.max_iterations,
                 force_residual: report.force_residual,
                 constraint_residual: 0.0,

@@ -389,6 +389,7 @@ impl SaddleNewton {
             });
         }
         Err(SolverError::NotConverged {
+            solver: "saddle-point Newton",
             iterations: settings.max_iterations,
             force_residual: report.force_residual,
             constraint_residual: report.constraint_residual,
