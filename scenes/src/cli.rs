@@ -25,7 +25,7 @@ use std::path::PathBuf;
 /// Exit status of a run whose solver did not converge.
 pub const EXIT_NOT_CONVERGED: i32 = 3;
 
-/// Nearly incompressible soft solids on linear tets without locking.
+/// Nearly incompressible soft solids on 4- or 10-node tets without locking.
 #[derive(Debug, Parser)]
 #[command(name = "isochor", version, about, long_about = None)]
 pub struct Cli {
