@@ -56,14 +56,7 @@ impl ElementMesh {
             return self.corners().count_inverted(x);
         }
         let n = self.kind().num_nodes();
-        let points: Vec<Vec3> = self
-            .kind()
-            .node_coordinates()
-            .iter()
-            .chain(TetQuadrature::ALL.iter().flat_map(|rule| rule.points()))
-            .copied()
-            .collect();
-        let dn = reference_gradients(self.kind(), &points);
+        let dn = reference_gradients(self.kind(), &self.kind().check_points());
         (0..self.num_elements())
             .filter(|&e| {
                 let nodes = self.element(e);

@@ -90,6 +90,20 @@ impl TetElement {
         Self::ALL.into_iter().find(|e| e.name() == name)
     }
 
+    /// The reference points where an element map's `det(dX/dxi)` is checked for folding or
+    /// inversion: the element's nodes and the points of every [`super::TetQuadrature`] rule.
+    pub fn check_points(self) -> Vec<Vec3> {
+        self.node_coordinates()
+            .iter()
+            .chain(
+                super::TetQuadrature::ALL
+                    .iter()
+                    .flat_map(|rule| rule.points()),
+            )
+            .copied()
+            .collect()
+    }
+
     /// Number of nodes: 4 or 10.
     pub const fn num_nodes(self) -> usize {
         match self {
