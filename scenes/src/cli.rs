@@ -318,7 +318,10 @@ pub fn human_summary(r: &RunResult) -> String {
         "mesh               {} vertices, {} tets, {} unknowns\n",
         r.vertices, r.tets, r.dofs
     );
-    s += &format!("steps              {}/{}\n", r.steps, r.steps_requested);
+    s += &format!(
+        "steps              {} accepted, {} cut, for {} frames\n",
+        r.steps, r.cuts, r.steps_requested
+    );
     s += &format!("newton iterations  {}\n", r.newton_iterations);
     s += &format!(
         "converged          {}\n",

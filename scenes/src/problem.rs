@@ -2,8 +2,8 @@
 //! only the terms the scene names, the [`Stepping`] and the [`Settings`].
 
 use crate::scene::{
-    KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, ObstacleSpec, Scene, SolverSpec,
-    SteppingSpec, ZonalEnergyName, ZoneKind,
+    CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, ObstacleSpec, Scene,
+    SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
 };
 use crate::selection::Selections;
 use crate::SceneError;
@@ -11,8 +11,8 @@ use isochor_energies::ParameterError;
 use isochor_mesh::element::TetElement;
 use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3, Zones};
 use isochor_solvers::{
-    Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion, Obstacle, Problem,
-    Settings, Shape, Stepping, ZonalEnergy,
+    Adaptive, Curve, Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion,
+    Obstacle, Problem, ScheduledLoad, Settings, Shape, StepControl, Stepping, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -35,30 +35,47 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
     let dirichlet = scene
         .dirichlet
         .iter()
-        .map(|d| {
+        .enumerate()
+        .map(|(i, d)| {
             Ok(Dirichlet {
                 nodes: selections.nodes(&d.selection)?,
                 axes: ['x', 'y', 'z'].map(|c| d.axes.contains(c)),
                 motion: motion(&d.motion),
+                curve: curve(&d.curve, &format!("dirichlet.{i}.curve"))?,
             })
         })
         .collect::<Result<Vec<_>, SceneError>>()?;
     let mut loads = Vec::new();
     if let Some(g) = scene.loads.gravity {
-        loads.push(Load::Gravity(vec3(g)));
-    }
-    for t in &scene.loads.traction {
-        loads.push(Load::Traction {
-            faces: selections.faces(&t.selection)?,
-            traction: vec3(t.traction),
+        loads.push(ScheduledLoad {
+            load: Load::Gravity(vec3(g)),
+            curve: curve(&scene.loads.gravity_curve, "loads.gravity_curve")?,
         });
     }
-    for p in &scene.loads.pressure {
-        loads.push(Load::Pressure {
-            faces: selections.faces(&p.selection)?,
-            pressure: p.pressure,
+    for (i, t) in scene.loads.traction.iter().enumerate() {
+        loads.push(ScheduledLoad {
+            load: Load::Traction {
+                faces: selections.faces(&t.selection)?,
+                traction: vec3(t.traction),
+            },
+            curve: curve(&t.curve, &format!("loads.traction.{i}.curve"))?,
         });
     }
+    for (i, p) in scene.loads.pressure.iter().enumerate() {
+        loads.push(ScheduledLoad {
+            load: Load::Pressure {
+                faces: selections.faces(&p.selection)?,
+                pressure: p.pressure,
+            },
+            curve: curve(&p.curve, &format!("loads.pressure.{i}.curve"))?,
+        });
+    }
+    let obstacles = scene
+        .obstacles
+        .iter()
+        .enumerate()
+        .map(|(i, o)| obstacle(o, i))
+        .collect::<Result<Vec<_>, SceneError>>()?;
     let method = scene.method();
     let zones = if method == Method::Zonal {
         Some(build_zones(scene, mesh.corners(), &selections)?)
@@ -74,43 +91,63 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
             zones,
             dirichlet,
             loads,
-            obstacles: scene.obstacles.iter().map(obstacle).collect(),
+            obstacles,
         },
         stepping: stepping(&scene.stepping),
         settings: settings(&scene.solver),
     })
 }
 
-/// The solver's obstacle (checked when the simulation is built).
-fn obstacle(spec: &ObstacleSpec) -> Obstacle {
-    let (shape, translate) = match *spec {
-        ObstacleSpec::HalfSpace {
+/// The solver's curve of the scene key `key`.
+fn curve(spec: &Option<CurveSpec>, key: &str) -> Result<Option<Curve>, SceneError> {
+    spec.as_ref()
+        .map(|points| {
+            Curve::new(points.iter().map(|p| (p[0], p[1])).collect()).map_err(|e| {
+                SceneError::Invalid {
+                    origin: "scene".into(),
+                    key: key.to_string(),
+                    message: e.to_string(),
+                }
+            })
+        })
+        .transpose()
+}
+
+/// The solver's obstacle number `index` (its shape checked when the simulation is built).
+fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
+    let (shape, translate, points) = match spec {
+        &ObstacleSpec::HalfSpace {
             point,
             normal,
             translate,
+            ref curve,
         } => (
             Shape::HalfSpace {
                 point: vec3(point),
                 normal: vec3(normal),
             },
             translate,
+            curve,
         ),
-        ObstacleSpec::Sphere {
+        &ObstacleSpec::Sphere {
             center,
             radius,
             translate,
+            ref curve,
         } => (
             Shape::Sphere {
                 center: vec3(center),
                 radius,
             },
             translate,
+            curve,
         ),
-        ObstacleSpec::Cylinder {
+        &ObstacleSpec::Cylinder {
             point,
             axis,
             radius,
             translate,
+            ref curve,
         } => (
             Shape::Cylinder {
                 point: vec3(point),
@@ -118,12 +155,14 @@ fn obstacle(spec: &ObstacleSpec) -> Obstacle {
                 radius,
             },
             translate,
+            curve,
         ),
     };
-    Obstacle {
+    Ok(Obstacle {
         shape,
         translate: vec3(translate),
-    }
+        curve: curve(points, &format!("obstacles.{index}.curve"))?,
+    })
 }
 
 fn vec3(a: [f64; 3]) -> Vec3 {
@@ -357,7 +396,25 @@ fn build_zones(
 /// The solver's stepping.
 pub fn stepping(spec: &SteppingSpec) -> Stepping {
     match *spec {
-        SteppingSpec::QuasiStatic { steps } => Stepping::QuasiStatic { steps },
+        SteppingSpec::QuasiStatic {
+            steps,
+            ref increments,
+            first_increment,
+            min_increment,
+        } => Stepping::QuasiStatic {
+            steps,
+            control: match increments.as_deref() {
+                Some("fixed") => StepControl::Fixed,
+                _ => {
+                    let default = Adaptive::default();
+                    StepControl::Adaptive(Adaptive {
+                        first: first_increment.unwrap_or(default.first),
+                        min: min_increment.unwrap_or(default.min),
+                        ..default
+                    })
+                }
+            },
+        },
         SteppingSpec::Dynamic { dt, frames } => Stepping::ImplicitEuler { dt, frames },
     }
 }

@@ -11,6 +11,10 @@ pub struct StepRecord {
     pub step: usize,
     /// Load parameter (quasi-static) or time in seconds (dynamics).
     pub t: f64,
+    /// The increment of the load parameter or time the step took.
+    pub increment: f64,
+    /// Attempts of this step that failed and were retried with half the increment.
+    pub cuts: Vec<CutRecord>,
     /// Newton (or dual) iterations of the step.
     pub newton_iterations: usize,
     /// Whether the step met both tolerances.
@@ -39,6 +43,21 @@ pub struct StepRecord {
     pub wall_time_s: f64,
     /// Contact forces of the accepted state (zeros without obstacles).
     pub contact: ContactRecord,
+}
+
+/// An attempted step that failed and was cut.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CutRecord {
+    /// The load parameter or time it aimed at.
+    pub t: f64,
+    /// Its increment.
+    pub increment: f64,
+    /// Force residual per iteration, then the last one.
+    pub force_residuals: Vec<f64>,
+    /// Constraint residual per iteration, then the last one.
+    pub constraint_residuals: Vec<f64>,
+    /// Why it failed.
+    pub error: String,
 }
 
 /// The contact of one accepted step.
@@ -79,8 +98,10 @@ pub struct RunResult {
     pub steps: usize,
     /// Steps or frames asked for.
     pub steps_requested: usize,
-    /// Newton (or dual) iterations over all steps.
+    /// Newton (or dual) iterations over all steps, cut attempts included.
     pub newton_iterations: usize,
+    /// Failed attempts retried with half the increment (adaptive stepping, dynamics).
+    pub cuts: usize,
     /// Whether every step converged and the run completed.
     pub converged: bool,
     /// Wall time of the run in seconds.

@@ -4,7 +4,7 @@
 
 use crate::output::{write_run_outputs, FrameWriter, OutputDir};
 use crate::probes::{self, ProbeInput};
-use crate::result::{ContactRecord, RunResult, StepRecord};
+use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
 use crate::scene::Scene;
 use crate::{problem, SceneError};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -76,26 +76,28 @@ pub fn run_scene(
     let mut write_error: Option<SceneError> = None;
     let start = Instant::now();
     let outcome = sim.run(built.stepping, |frame: &Frame<'_>| {
-        history.push(record(
+        let mut step = record(
             &mesh,
             frame.state,
             frame.report,
             frame.inverted_tets,
             frame.energies,
-        ));
+        );
+        step.cuts = frame.cuts.iter().map(cut_record).collect();
+        history.push(step);
         last_pressures.clone_from(&frame.tet_pressures);
         last_energies = frame.energies;
         if let (Some(w), None) = (frames.as_mut(), write_error.as_ref()) {
-            if w.wants(frame.index, total) {
+            if let Some(index) = frame.frame.filter(|&k| w.wants(k, total)) {
                 let x = &frame.state.positions;
                 let p = &frame.tet_pressures;
                 let f = &frame.contact_forces;
-                if let Err(e) = w.write(&mesh, frame.index, frame.state.t, x, p, f) {
+                if let Err(e) = w.write(&mesh, index, frame.state.t, x, p, f) {
                     write_error = Some(e);
                 }
             }
         }
-        bar.set_position(frame.index as u64);
+        bar.set_position(frame.progress.levels as u64);
         bar.set_message(format!(
             "{} Newton iterations",
             frame.report.newton_iterations()
@@ -171,7 +173,12 @@ pub fn run_scene(
         steps: history.len(),
         steps_requested: total,
         newton_iterations: reports.iter().map(|r| r.newton_iterations()).sum(),
-        converged: error.is_none() && reports.iter().all(|r| r.converged),
+        converged: error.is_none()
+            && reports
+                .iter()
+                .filter(|r| r.failure.is_none())
+                .all(|r| r.converged),
+        cuts: reports.iter().filter(|r| r.failure.is_some()).count() - usize::from(error.is_some()),
         wall_time_s: wall_time.as_secs_f64(),
         volume_change: mesh.total_volume_at(&final_state.positions) / mesh.rest_volume() - 1.0,
         probes,
@@ -197,14 +204,8 @@ pub fn run_scene(
     Ok((result, written))
 }
 
-/// The record of one step: its iterations and the state it ended in.
-fn record(
-    mesh: &isochor_mesh::ElementMesh,
-    state: &State,
-    report: &StepReport,
-    inverted_tets: usize,
-    energies: Energies,
-) -> StepRecord {
+/// The residual histories of a step: per iteration, then the final one.
+fn residuals(report: &StepReport) -> (Vec<f64>, Vec<f64>) {
     let mut force: Vec<f64> = report.iterations.iter().map(|i| i.force_residual).collect();
     let mut constraint: Vec<f64> = report
         .iterations
@@ -213,9 +214,35 @@ fn record(
         .collect();
     force.push(report.force_residual);
     constraint.push(report.constraint_residual);
+    (force, constraint)
+}
+
+/// The record of a failed attempt that was retried with a smaller increment.
+fn cut_record(report: &StepReport) -> CutRecord {
+    let (force_residuals, constraint_residuals) = residuals(report);
+    CutRecord {
+        t: report.t,
+        increment: report.increment,
+        force_residuals,
+        constraint_residuals,
+        error: report.failure.clone().unwrap_or_default(),
+    }
+}
+
+/// The record of one step: its iterations and the state it ended in.
+fn record(
+    mesh: &isochor_mesh::ElementMesh,
+    state: &State,
+    report: &StepReport,
+    inverted_tets: usize,
+    energies: Energies,
+) -> StepRecord {
+    let (force, constraint) = residuals(report);
     StepRecord {
         step: report.step,
         t: report.t,
+        increment: report.increment,
+        cuts: Vec::new(),
         newton_iterations: report.newton_iterations(),
         converged: report.converged,
         force_residuals: force,

@@ -330,7 +330,15 @@ pub struct DirichletSpec {
     /// How the vertices move with the load parameter (default `fixed`).
     #[serde(default)]
     pub motion: MotionSpec,
+    /// The motion's parameter over the run (default: the fraction of the run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<CurveSpec>,
 }
+
+/// A piecewise-linear curve: `[[s0, y0], [s1, y1], ...]` with increasing `s`, the load
+/// parameter (quasi-static) or time in seconds (dynamics); `y` scales a load or is the
+/// parameter of a motion (1: the full motion). Constant beyond its first and last point.
+pub type CurveSpec = Vec<[f64; 2]>;
 
 fn xyz() -> String {
     "xyz".to_string()
@@ -361,6 +369,10 @@ pub enum MotionSpec {
 pub struct LoadsSpec {
     /// Gravitational acceleration (m/s^2), e.g. `[0, -9.8, 0]`.
     pub gravity: Option<Vector>,
+    /// The gravity's scale over the run (default: ramped in quasi-static stepping, constant
+    /// in dynamics).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity_curve: Option<CurveSpec>,
     /// Dead tractions on boundary faces.
     #[serde(default)]
     pub traction: Vec<TractionSpec>,
@@ -383,6 +395,8 @@ pub enum ObstacleSpec {
         normal: Vector,
         #[serde(default)]
         translate: Vector,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        curve: Option<CurveSpec>,
     },
     /// A solid sphere.
     Sphere {
@@ -390,6 +404,8 @@ pub enum ObstacleSpec {
         radius: f64,
         #[serde(default)]
         translate: Vector,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        curve: Option<CurveSpec>,
     },
     /// An infinite solid cylinder about the line through `point` along `axis`.
     Cylinder {
@@ -398,6 +414,8 @@ pub enum ObstacleSpec {
         radius: f64,
         #[serde(default)]
         translate: Vector,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        curve: Option<CurveSpec>,
     },
 }
 
@@ -407,6 +425,9 @@ pub enum ObstacleSpec {
 pub struct TractionSpec {
     pub selection: String,
     pub traction: Vector,
+    /// Scale over the run (default: the load ramp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<CurveSpec>,
 }
 
 /// A follower pressure (Pa, positive pushes into the body) on the boundary faces of a selection.
@@ -415,6 +436,9 @@ pub struct TractionSpec {
 pub struct PressureSpec {
     pub selection: String,
     pub pressure: f64,
+    /// Scale over the run (default: the load ramp).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curve: Option<CurveSpec>,
 }
 
 /// Zones of the `zonal` method.
@@ -443,8 +467,22 @@ pub enum ZoneKind {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "mode", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum SteppingSpec {
-    /// Loads and motions ramped over `steps` equilibrium solves.
-    QuasiStatic { steps: usize },
+    /// Loads and motions follow the load parameter from 0 to 1; the levels `k / steps` are
+    /// written as frames. `increments = "adaptive"` (default) starts with `first_increment`
+    /// of the load (default 1: all of it, never past a frame level), halves the increment
+    /// after a failed solve down to `min_increment` (default 1e-3) and doubles it after easy
+    /// steps; `"fixed"` takes one solve per frame and stops at the first failure.
+    QuasiStatic {
+        steps: usize,
+        /// `"adaptive"` (default) or `"fixed"` (a string checked by [`Scene::validate`], so
+        /// that a bad value names its key).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        increments: Option<String>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        first_increment: Option<f64>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        min_increment: Option<f64>,
+    },
     /// Implicit Euler with time step `dt` (s) for `frames` frames.
     Dynamic { dt: f64, frames: usize },
 }
@@ -646,7 +684,7 @@ impl Scene {
     /// The stepping's number of steps or frames.
     pub fn num_steps(&self) -> usize {
         match self.stepping {
-            SteppingSpec::QuasiStatic { steps } => steps,
+            SteppingSpec::QuasiStatic { steps, .. } => steps,
             SteppingSpec::Dynamic { frames, .. } => frames,
         }
     }
@@ -771,8 +809,38 @@ impl Scene {
             }
         }
         match self.stepping {
-            SteppingSpec::QuasiStatic { steps: 0 } => {
+            SteppingSpec::QuasiStatic { steps: 0, .. } => {
                 return Err(bad("stepping.steps", "at least one step is needed".into()))
+            }
+            SteppingSpec::QuasiStatic {
+                ref increments,
+                first_increment,
+                min_increment,
+                ..
+            } => {
+                if let Some(other) = increments
+                    .as_deref()
+                    .filter(|i| !["adaptive", "fixed"].contains(i))
+                {
+                    return Err(bad(
+                        "stepping.increments",
+                        format!("unknown value '{other}' (valid: adaptive, fixed)"),
+                    ));
+                }
+                let first = first_increment.unwrap_or(1.0);
+                if !(first > 0.0 && first <= 1.0) {
+                    return Err(bad(
+                        "stepping.first_increment",
+                        format!("{first} must lie in (0, 1]"),
+                    ));
+                }
+                let min = min_increment.unwrap_or(1e-4);
+                if !(min > 0.0 && min <= first) {
+                    return Err(bad(
+                        "stepping.min_increment",
+                        format!("{min} must lie in (0, first_increment = {first}]"),
+                    ));
+                }
             }
             SteppingSpec::Dynamic { dt, frames } => {
                 if frames == 0 {
@@ -785,7 +853,6 @@ impl Scene {
                     return Err(bad("stepping.dt", format!("{dt} must be finite and > 0")));
                 }
             }
-            _ => {}
         }
         if self.output.every == 0 {
             return Err(bad("output.every", "must be at least 1".into()));

@@ -392,7 +392,12 @@ fn dynamic_cube_dissipates_energy_towards_its_equilibrium() {
         let r = run("dynamic-cube", variant, &["frames=20"]);
         let mut scene =
             load_scene("dynamic-cube", Some(variant), &reduced("dynamic-cube", &[])).unwrap();
-        scene.stepping = SteppingSpec::QuasiStatic { steps: 1 };
+        scene.stepping = SteppingSpec::QuasiStatic {
+            steps: 1,
+            increments: None,
+            first_increment: None,
+            min_increment: None,
+        };
         let statics = run_converged(&scene, &format!("dynamic-cube [{variant}] at rest"));
         let last = statics.history.last().unwrap();
         let w_min = last.elastic_energy + last.external_energy;

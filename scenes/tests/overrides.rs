@@ -8,7 +8,7 @@ use isochor_scenes::overrides::FLAT_KEYS;
 use isochor_scenes::problem::{build, Built};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
-    Epidermis, Kappa, LinearSolver, Load, Method, Simulation, Stepping, ZonalEnergy,
+    Epidermis, Kappa, LinearSolver, Load, Method, Simulation, StepControl, Stepping, ZonalEnergy,
 };
 
 /// One flat key: the scene and overrides it needs first, a value that differs from the
@@ -202,7 +202,7 @@ const CASES: &[Case] = &[
         scene: STATIC,
         setup: &[],
         value: "[0.0, 0.0, -3.7]",
-        reached: |_, b| b.problem.loads == [Load::Gravity(Vec3::new(0.0, 0.0, -3.7))],
+        reached: |_, b| b.problem.loads == [Load::Gravity(Vec3::new(0.0, 0.0, -3.7)).into()],
         bad: "[0.0, -9.8]",
     },
     Case {
@@ -210,7 +210,31 @@ const CASES: &[Case] = &[
         scene: STATIC,
         setup: &[],
         value: "7",
-        reached: |_, b| b.stepping == Stepping::QuasiStatic { steps: 7 },
+        reached: |_, b| b.stepping == Stepping::adaptive(7),
+        bad: "0",
+    },
+    Case {
+        key: "increments",
+        scene: STATIC,
+        setup: &["steps=3"],
+        value: "\"fixed\"",
+        reached: |_, b| b.stepping == Stepping::quasi_static(3),
+        bad: "\"sometimes\"",
+    },
+    Case {
+        key: "first_increment",
+        scene: STATIC,
+        setup: &[],
+        value: "0.25",
+        reached: |_, b| matches!(b.stepping, Stepping::QuasiStatic { control: StepControl::Adaptive(a), .. } if a.first == 0.25),
+        bad: "1.5",
+    },
+    Case {
+        key: "min_increment",
+        scene: STATIC,
+        setup: &[],
+        value: "0.01",
+        reached: |_, b| matches!(b.stepping, Stepping::QuasiStatic { control: StepControl::Adaptive(a), .. } if a.min == 0.01),
         bad: "0",
     },
     Case {

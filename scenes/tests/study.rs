@@ -44,6 +44,7 @@ fn run_on(method: Method, element: TetElement, res: f64, value: f64, wall_time_s
         steps: 1,
         steps_requested: 1,
         newton_iterations: 1,
+        cuts: 0,
         converged: true,
         wall_time_s,
         volume_change: 0.0,

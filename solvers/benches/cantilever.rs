@@ -14,7 +14,7 @@ fn solve(res: usize, method: Method) -> (RunSummary, usize) {
         .expect("valid problem");
     let dofs = sim.num_dofs();
     let summary = sim
-        .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
+        .run(Stepping::quasi_static(1), |_| {})
         .expect("the cantilever converges");
     (summary, dofs)
 }

@@ -31,7 +31,7 @@ use isochor_mesh::Vec3;
 use isochor_solvers::linear::{KktOptions, KktSolver, ShiftSchedule, SparsityPattern, Triangle};
 use isochor_solvers::terms::{DeadLoad, Elastic, EnergyTerm};
 use isochor_solvers::{
-    Dofs, Load, Method, Problem, RunSummary, Settings, Simulation, State, Stepping,
+    Dofs, Load, LoadLevel, Method, Problem, RunSummary, Settings, Simulation, State, Stepping,
 };
 use std::hint::black_box;
 use std::sync::Arc;
@@ -49,7 +49,7 @@ fn simulation(res: usize) -> Simulation {
 }
 
 fn solve(mut sim: Simulation) -> RunSummary {
-    sim.run(Stepping::QuasiStatic { steps: 1 }, |_| {})
+    sim.run(Stepping::quasi_static(1), |_| {})
         .expect("the cantilever converges")
 }
 
@@ -129,7 +129,7 @@ impl Iteration {
             Settings::default().project_hessians,
         )
         .expect("elastic term");
-        let Load::Gravity(g) = loads[0] else {
+        let Load::Gravity(g) = loads[0].load else {
             panic!("the cantilever is loaded by gravity")
         };
         let weights: Vec<f64> = mesh
@@ -199,10 +199,10 @@ impl Iteration {
         let mut values = vec![0.0; self.hessian_len];
         let (elastic, geometric) = values.split_at_mut(self.elastic_len);
         self.elastic
-            .evaluate(x, 1.0, Some(&mut gradient), Some(elastic))
+            .evaluate(x, &LoadLevel::FULL, Some(&mut gradient), Some(elastic))
             .expect("elastic");
         self.gravity
-            .evaluate(x, 1.0, Some(&mut gradient), None)
+            .evaluate(x, &LoadLevel::FULL, Some(&mut gradient), None)
             .expect("gravity");
         self.constraints
             .geometric_stiffness_values(x, p, geometric)

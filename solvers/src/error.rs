@@ -41,6 +41,13 @@ pub enum SolverError {
         iterations: usize,
         max_penetration: f64,
     },
+    #[error("no convergence from load parameter or time {t} even with an increment of {increment:e} (the smallest allowed is {min:e}); the last attempt: {error}")]
+    IncrementTooSmall {
+        t: f64,
+        increment: f64,
+        min: f64,
+        error: Box<SolverError>,
+    },
     #[error("linear solver failed: {0}")]
     Linear(String),
     #[error("non-finite value in {0}")]

@@ -25,13 +25,13 @@ pub mod terms;
 
 pub use error::SolverError;
 pub use model::{
-    Dirichlet, Dofs, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Shape,
-    ZonalEnergy,
+    Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, Method, Motion, Obstacle,
+    Problem, ScheduledLoad, Shape, ZonalEnergy,
 };
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{
-    Energies, Frame, Linearizer, NewtonSystem, RunSummary, Simulation, SimulationFailure, State,
-    Stepping,
+    Adaptive, Attempt, Checkpoint, Energies, Frame, Linearizer, NewtonSystem, Progress, RunSummary,
+    Simulation, SimulationFailure, State, StepControl, Stepping,
 };
 pub use simulation::{IterationReport, StepReport, Timings};
 pub use terms::ContactSummary;

@@ -36,8 +36,9 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
             nodes: clamped,
             axes: [true; 3],
             motion: Motion::Fixed,
+            curve: None,
         }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0))],
+        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
         obstacles: Vec::new(),
     }
 }

@@ -106,8 +106,9 @@ fn resting_block_at(method: Method, nu: f64, z0: f64) -> Problem {
             nodes: bottom,
             axes: [true, true, false],
             motion: Motion::Fixed,
+            curve: None,
         }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G))],
+        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
         obstacles: vec![ground(z0)],
     }
 }
@@ -132,7 +133,7 @@ fn resting_block_carries_its_weight_without_penetrating() {
         let mut sim = Simulation::new(problem, Settings::default()).unwrap();
         let scale = sim.force_scale().unwrap();
         let summary = sim
-            .run(Stepping::QuasiStatic { steps: 2 }, |_| {})
+            .run(Stepping::quasi_static(2), |_| {})
             .unwrap_or_else(|e| panic!("{method}: {e}"));
         let last = summary.reports.last().unwrap();
         let force = last.contact.force;
@@ -174,7 +175,7 @@ fn resting_block_does_not_depend_on_the_origin() {
         let solve = |z0: f64| {
             let mut sim =
                 Simulation::new(resting_block_at(method, 0.45, z0), Settings::default()).unwrap();
-            sim.run(Stepping::QuasiStatic { steps: 2 }, |_| {})
+            sim.run(Stepping::quasi_static(2), |_| {})
                 .unwrap_or_else(|e| panic!("{method} with the ground at z = {z0}: {e}"))
         };
         let (high, low) = (solve(0.0), solve(-0.05));
@@ -211,6 +212,7 @@ fn receding_ground_releases_every_contact() {
             normal: Vec3::z(),
         },
         translate: Vec3::new(0.0, 0.0, -4e-3),
+        curve: None,
     };
     let top = plane(&mesh, 2, 0.1);
     let problem = Problem {
@@ -222,14 +224,15 @@ fn receding_ground_releases_every_contact() {
             nodes: top,
             axes: [true; 3],
             motion: Motion::Fixed,
+            curve: None,
         }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G))],
-        obstacles: vec![ground],
+        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
+        obstacles: vec![ground.clone()],
     };
     let steps = 4;
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let mut active = Vec::new();
-    sim.run(Stepping::QuasiStatic { steps }, |frame| {
+    sim.run(Stepping::quasi_static(steps), |frame| {
         // One obstacle with normal +z: each vertex's contact force is (0, 0, lambda).
         let t = frame.index as f64 / steps as f64;
         let x = &frame.state.positions;
@@ -265,7 +268,7 @@ fn dropped_ball(res: usize, method: Method, mu: f64, nu: f64, gap: f64) -> Probl
         material: Material::from_young_poisson(young, nu, 1000.0).unwrap(),
         zones: None,
         dirichlet: Vec::new(),
-        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G))],
+        loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
         obstacles: vec![ground(0.0)],
     }
 }
@@ -347,6 +350,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         nodes: plane(&mesh, axis, value),
         axes: [axis == 0, axis == 1, false],
         motion: Motion::Fixed,
+        curve: None,
     };
     let dirichlet = vec![hold(0, 0.05), hold(1, 0.0)];
     let cylinder = |z: f64, dz: f64| Obstacle {
@@ -356,6 +360,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
             radius: 0.05,
         },
         translate: Vec3::new(0.0, 0.0, dz),
+        curve: None,
     };
     let obstacles = vec![cylinder(-0.05, 0.01), cylinder(0.15, -0.01)];
     let problem = Problem {
@@ -368,7 +373,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         obstacles: obstacles.clone(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
-    let summary = sim.run(Stepping::QuasiStatic { steps: 2 }, |_| {}).unwrap();
+    let summary = sim.run(Stepping::quasi_static(2), |_| {}).unwrap();
     let last = summary.reports.last().unwrap();
     let x = &summary.final_state.positions;
     assert!(last.contact.max_penetration <= tol);
@@ -418,15 +423,14 @@ fn bad_obstacles_and_unconverged_contact_are_errors() {
             normal: Vec3::z(),
         },
         translate: Vec3::new(0.0, 0.0, 0.01),
+        curve: None,
     }];
     let settings = Settings {
         max_contact_iterations: 1,
         ..Settings::default()
     };
     let mut sim = Simulation::new(problem, settings).unwrap();
-    let failure = sim
-        .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
-        .unwrap_err();
+    let failure = sim.run(Stepping::quasi_static(1), |_| {}).unwrap_err();
     assert!(matches!(
         failure.error,
         isochor_solvers::SolverError::ContactNotConverged { iterations: 1, .. }

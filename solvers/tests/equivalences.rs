@@ -12,7 +12,7 @@ fn solve(problem: Problem) -> Vec<Vec3> {
     let method = problem.method;
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let summary = sim
-        .run(Stepping::QuasiStatic { steps: 2 }, |_| {})
+        .run(Stepping::quasi_static(2), |_| {})
         .unwrap_or_else(|e| panic!("{method}: {e}"));
     summary.final_state.positions
 }
@@ -93,7 +93,7 @@ fn iterative_linear_solvers_match_direct_ones() {
         };
         let mut sim = Simulation::new(problem, settings).unwrap();
         let iterative = sim
-            .run(Stepping::QuasiStatic { steps: 2 }, |_| {})
+            .run(Stepping::quasi_static(2), |_| {})
             .unwrap_or_else(|e| panic!("{method}: {e}"))
             .final_state
             .positions;

@@ -26,6 +26,7 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         nodes,
         axes,
         motion: Motion::Fixed,
+        curve: None,
     };
     let boundary = mesh.boundary().unwrap();
     let end_faces: Vec<[usize; 3]> = boundary
@@ -47,7 +48,8 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         loads: vec![Load::Traction {
             faces: end_faces,
             traction: Vec3::new(traction, 0.0, 0.0),
-        }],
+        }
+        .into()],
         mesh: mesh.into(),
         method: Method::Standard,
         material,
@@ -55,7 +57,7 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         obstacles: Vec::new(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
-    let summary = sim.run(Stepping::QuasiStatic { steps: 3 }, |_| {}).unwrap();
+    let summary = sim.run(Stepping::quasi_static(3), |_| {}).unwrap();
     let x = &summary.final_state.positions;
     let rest = sim.mesh().nodes();
     // Analytic: P = mu (F - F^-T) + lambda log(J) F^-T with F = diag(s, t, t).
@@ -107,9 +109,9 @@ fn slender_cantilever_matches_euler_bernoulli() {
         .map(|&res| {
             let size = Vec3::new(length, height, height);
             let mut problem = beam([20 * res, res, res], Method::Standard, 0.3, size);
-            problem.loads = vec![Load::Gravity(Vec3::new(0.0, -g, 0.0))];
+            problem.loads = vec![Load::Gravity(Vec3::new(0.0, -g, 0.0)).into()];
             let mut sim = Simulation::new(problem, Settings::default()).unwrap();
-            let summary = sim.run(Stepping::QuasiStatic { steps: 1 }, |_| {}).unwrap();
+            let summary = sim.run(Stepping::quasi_static(1), |_| {}).unwrap();
             end_deflection(sim.mesh().corners(), &summary.final_state.positions) / expected
         })
         .collect();
@@ -134,7 +136,7 @@ fn slender_cantilever_matches_euler_bernoulli() {
 fn mixed_p1_keeps_the_volume_at_nu_one_half() {
     let mut sim =
         Simulation::new(cantilever(2, Method::MixedP1, 0.5), Settings::default()).unwrap();
-    let summary = sim.run(Stepping::QuasiStatic { steps: 2 }, |_| {}).unwrap();
+    let summary = sim.run(Stepping::quasi_static(2), |_| {}).unwrap();
     let mesh = sim.mesh();
     let change = mesh.total_volume_at(&summary.final_state.positions) / mesh.rest_volume() - 1.0;
     let deflection = end_deflection(mesh.corners(), &summary.final_state.positions);
@@ -163,9 +165,7 @@ fn non_convergence_is_an_error_that_keeps_the_last_state() {
     let problem = cantilever(2, Method::Standard, 0.4999);
     let rest = problem.mesh.nodes().to_vec();
     let mut sim = Simulation::new(problem, settings).unwrap();
-    let failure = sim
-        .run(Stepping::QuasiStatic { steps: 1 }, |_| {})
-        .unwrap_err();
+    let failure = sim.run(Stepping::quasi_static(1), |_| {}).unwrap_err();
     assert_eq!(failure.failed_step, 1);
     assert_eq!(failure.last_state.positions, rest);
     assert_eq!(failure.reports.len(), 1);
@@ -186,7 +186,7 @@ fn free_fall_follows_the_discrete_implicit_euler_trajectory() {
     for method in [Method::Standard, Method::MixedP1, Method::Zonal] {
         let mut problem = cantilever(1, method, 0.45);
         problem.dirichlet.clear();
-        problem.loads = vec![Load::Gravity(g)];
+        problem.loads = vec![Load::Gravity(g).into()];
         let rest = problem.mesh.nodes().to_vec();
         let mut sim = Simulation::new(problem, Settings::default()).unwrap();
         let summary = sim

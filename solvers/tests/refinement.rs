@@ -29,7 +29,7 @@ fn methods_agree_as_the_mesh_is_refined() {
                 problem.material.zonal_lambda = Lame::from_young_poisson(266e3, nu).unwrap().lambda;
                 let mut sim = Simulation::new(problem, Settings::default()).unwrap();
                 let summary = sim
-                    .run(Stepping::QuasiStatic { steps: 2 }, |_| {})
+                    .run(Stepping::quasi_static(2), |_| {})
                     .unwrap_or_else(|e| panic!("{method} at res {res}: {e}"));
                 end_deflection(sim.mesh().corners(), &summary.final_state.positions)
             })

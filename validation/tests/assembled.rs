@@ -57,13 +57,15 @@ fn problem(deformed: &Deformed, method: Method) -> Problem {
             nodes: clamped,
             axes: [true; 3],
             motion: Motion::Fixed,
+            curve: None,
         }],
         loads: vec![
-            Load::Gravity(Vec3::new(0.0, 0.0, -9.8)),
+            Load::Gravity(Vec3::new(0.0, 0.0, -9.8)).into(),
             Load::Traction {
                 faces: end,
                 traction: Vec3::new(2e3, 1e3, 0.0),
-            },
+            }
+            .into(),
         ],
         obstacles: Vec::new(),
         mesh: mesh.into(),
@@ -198,7 +200,7 @@ const CASES: u32 = 4;
 /// Checks `method` at one random state, quasi-static (load 1/2) and implicit Euler.
 fn property(method: Method, deformed: &Deformed, pressures: &[f64]) -> Result<(), TestCaseError> {
     for stepping in [
-        Stepping::QuasiStatic { steps: 2 },
+        Stepping::quasi_static(2),
         Stepping::ImplicitEuler { dt: DT, frames: 1 },
     ] {
         let errors = check(deformed, pressures, method, stepping);

@@ -7,7 +7,7 @@
 
 use isochor_mesh::Vec3;
 use isochor_solvers::terms::{Contact, EnergyTerm};
-use isochor_solvers::{Obstacle, Shape};
+use isochor_solvers::{LoadLevel, Obstacle, Shape};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 
@@ -52,7 +52,7 @@ fn evaluate(term: &Contact, x: &[Vec3]) -> (f64, Vec<f64>, DMatrix<f64>) {
     let pattern = term.hessian_pattern();
     let mut values = vec![0.0; pattern.len()];
     let e = term
-        .evaluate(x, 1.0, Some(&mut g), Some(&mut values))
+        .evaluate(x, &LoadLevel::FULL, Some(&mut g), Some(&mut values))
         .unwrap();
     let mut h = DMatrix::zeros(n, n);
     for (&(r, c), v) in pattern.iter().zip(&values) {
@@ -82,10 +82,10 @@ proptest! {
         // Vertex 1 is not a candidate: its row must stay zero.
         let obstacles: Vec<Obstacle> = shapes
             .iter()
-            .map(|&shape| Obstacle { shape, translate })
+            .map(|&shape| Obstacle { shape, translate, curve: None })
             .collect();
         let term = Contact::new(vec![0, 2], obstacles.clone(), vec![rho, 2.0 * rho]);
-        term.set_time(t);
+        term.set_level(LoadLevel::quasi_static(t));
         // Multipliers from a projected update at another state: positive where that state
         // penetrated.
         term.update(&before, 0.0);

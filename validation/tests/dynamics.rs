@@ -57,8 +57,9 @@ fn cantilever(method: Method) -> Problem {
             nodes: clamped,
             axes: [true; 3],
             motion: Motion::Fixed,
+            curve: None,
         }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0))],
+        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
         method,
         material: Material::from_young_poisson(266e3, 0.45, DENSITY).expect("material"),
         zones: None,
@@ -131,7 +132,7 @@ fn reference_motion(method: Method, steps: usize) -> Vec<Vec3> {
     let start = sim.state().clone();
     let mut state = start.clone();
     let mut linearizer = sim
-        .linearizer(Stepping::QuasiStatic { steps: 1 }, 1)
+        .linearizer(Stepping::quasi_static(1), 1)
         .expect("linearizer");
     let free = linearizer.newton_system(&state).expect("system").free;
     let nf = free.len();

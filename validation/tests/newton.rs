@@ -81,6 +81,7 @@ fn patch(method: Method) -> Problem {
         nodes,
         axes,
         motion: Motion::Fixed,
+        curve: None,
     };
     let end_x = plane(&mesh, 0, 1.0);
     let end = mesh
@@ -100,7 +101,8 @@ fn patch(method: Method) -> Problem {
         loads: vec![Load::Traction {
             faces: end,
             traction: Vec3::new(TRACTION, 0.0, 0.0),
-        }],
+        }
+        .into()],
         method,
         material: Material::from_young_poisson(YOUNG, NU, 1000.0).expect("material"),
         zones: None,
@@ -118,8 +120,9 @@ fn cantilever(method: Method) -> Problem {
             nodes: plane(&mesh, 0, 0.0),
             axes: [true; 3],
             motion: Motion::Fixed,
+            curve: None,
         }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0))],
+        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
         method,
         material: Material::from_young_poisson(266e3, 0.45, 1070.0).expect("material"),
         zones: None,
@@ -286,7 +289,7 @@ fn assert_exact_newton(
 /// Runs the patch test with `method` and compares every step with Newton on `model`.
 fn patch_matches_homogeneous_newton(method: Method, model: &dyn Homogeneous) -> (usize, f64) {
     let mut sim = Simulation::new(patch(method), Settings::default()).expect("patch");
-    let stepping = Stepping::QuasiStatic { steps: STEPS };
+    let stepping = Stepping::quasi_static(STEPS);
     let force_scale = sim.force_scale().expect("scale");
     let force_tol = Settings::default().force_tolerance * force_scale;
     let volumes = sim.constraint_volumes().to_vec();
@@ -402,7 +405,7 @@ fn exact_newton(
 /// previous step's solution; returns the Newton iterations of the run.
 fn matches_exact_newton(what: &str, problem: Problem) -> usize {
     let mut sim = Simulation::new(problem, Settings::default()).expect("problem");
-    let stepping = Stepping::QuasiStatic { steps: STEPS };
+    let stepping = Stepping::quasi_static(STEPS);
     let force_scale = sim.force_scale().expect("scale");
     let mut starts = vec![sim.state().clone()];
     let summary = sim

@@ -63,6 +63,7 @@ fn prescribe(mesh: &ElementMesh, nodes: &[usize], u: impl Fn(&Vec3) -> Vec3) -> 
             nodes: vec![i],
             axes: [true; 3],
             motion: Motion::Translate(u(&mesh.nodes()[i])),
+            curve: None,
         })
         .collect()
 }
@@ -110,7 +111,7 @@ fn affine_patch(mesh: &ElementMesh, method: Method, nu: f64, a: &Matrix3<f64>, b
         Settings::default(),
     )
     .expect("simulation");
-    sim.run(Stepping::QuasiStatic { steps: 1 }, |_| {})
+    sim.run(Stepping::quasi_static(1), |_| {})
         .unwrap_or_else(|e| panic!("{method} nu {nu}: {e}"));
     let state = sim.state();
     let x = &state.positions;
@@ -289,7 +290,7 @@ fn linear_response(problem: Problem) -> (Vec<Vec3>, Vec<f64>) {
     let mut sim = Simulation::new(problem, Settings::default()).expect("simulation");
     let rest = sim.state().clone();
     let mut linearizer = sim
-        .linearizer(Stepping::QuasiStatic { steps: 1 }, 1)
+        .linearizer(Stepping::quasi_static(1), 1)
         .expect("linearizer");
     let system = linearizer.newton_system(&rest).expect("Newton system");
     let step = system

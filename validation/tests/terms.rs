@@ -13,7 +13,7 @@ use isochor_solvers::terms::{
     AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces, FollowerPressure,
     Inertia,
 };
-use isochor_solvers::SolverError;
+use isochor_solvers::{LoadLevel, SolverError};
 use isochor_validation::strategies::{deformed_box, quadratic};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
@@ -41,7 +41,12 @@ fn evaluate(term: &dyn EnergyTerm, x: &[Vec3]) -> (f64, Vec<f64>, DMatrix<f64>) 
     let pattern = term.hessian_pattern();
     let mut values = vec![0.0; pattern.len()];
     let e = term
-        .evaluate(x, 0.7, Some(&mut g), Some(&mut values))
+        .evaluate(
+            x,
+            &LoadLevel::quasi_static(0.7),
+            Some(&mut g),
+            Some(&mut values),
+        )
         .unwrap();
     let mut h = DMatrix::zeros(n, n);
     for (&(r, c), v) in pattern.iter().zip(&values) {
@@ -51,12 +56,14 @@ fn evaluate(term: &dyn EnergyTerm, x: &[Vec3]) -> (f64, Vec<f64>, DMatrix<f64>) 
 }
 
 fn energy(term: &dyn EnergyTerm, x: &[Vec3]) -> f64 {
-    term.evaluate(x, 0.7, None, None).unwrap()
+    term.evaluate(x, &LoadLevel::quasi_static(0.7), None, None)
+        .unwrap()
 }
 
 fn gradient(term: &dyn EnergyTerm, x: &[Vec3]) -> Vec<f64> {
     let mut g = vec![0.0; 3 * x.len()];
-    term.evaluate(x, 0.7, Some(&mut g), None).unwrap();
+    term.evaluate(x, &LoadLevel::quasi_static(0.7), Some(&mut g), None)
+        .unwrap();
     g
 }
 
@@ -146,7 +153,7 @@ fn terms(mesh: &ElementMesh, seed: f64) -> Vec<Box<dyn EnergyTerm>> {
     let velocities: Vec<Vec3> = (0..mesh.num_nodes())
         .map(|i| Vec3::repeat((i as f64 * seed).sin()))
         .collect();
-    inertia.begin_step(mesh.nodes(), &velocities);
+    inertia.begin_step(mesh.nodes(), &velocities, 0.01);
     let material = Arc::new(standard_neo_hookean(Lame::new(1.0, 10.0).unwrap()).unwrap());
     let traction = DeadLoad::traction(mesh.nodes(), &faces(), Vec3::new(seed, -1.0, 0.5));
     vec![
@@ -193,13 +200,13 @@ impl EnergyTerm for Wrong<'_> {
     fn evaluate(
         &self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         mut gradient: Option<&mut [f64]>,
         mut hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         let e = self
             .inner
-            .evaluate(x, load, gradient.as_deref_mut(), hessian.as_deref_mut())?;
+            .evaluate(x, level, gradient.as_deref_mut(), hessian.as_deref_mut())?;
         match (self.defect, gradient, hessian) {
             (Defect::ScaledGradient, Some(g), _) => g.iter_mut().for_each(|v| *v *= 1.0 + DEFECT),
             (Defect::GradientEntry, Some(g), _) => {
@@ -300,7 +307,7 @@ proptest! {
         let masses = masses(x.len(), seed);
         let term = DeadLoad::gravity(&masses, g);
         let mut gradient = vec![0.0; 3 * x.len()];
-        let e = term.evaluate(x, load, Some(&mut gradient), None).unwrap();
+        let e = term.evaluate(x, &LoadLevel::quasi_static(load), Some(&mut gradient), None).unwrap();
         let expected = -load * masses.iter().zip(x).map(|(m, xi)| m * g.dot(xi)).sum::<f64>();
         let size: f64 = masses.iter().zip(x).map(|(m, xi)| m * g.norm() * xi.norm()).sum();
         prop_assert!((e - expected).abs() <= 1e-13 * size, "{e} against {expected}");
@@ -323,7 +330,7 @@ proptest! {
         let (term, stiffness) = condensed(&mesh);
         let mut phi = vec![0.0; stiffness.len()];
         nodal(&mesh).values(&deformed.x, &mut phi).unwrap();
-        let e = term.evaluate(&deformed.x, 1.0, None, None).unwrap();
+        let e = term.evaluate(&deformed.x, &LoadLevel::FULL, None, None).unwrap();
         let expected: f64 = phi.iter().zip(&stiffness).map(|(p, r)| 0.5 * r * p * p).sum();
         prop_assert!((e - expected).abs() <= 1e-13 * expected, "{e} against {expected}");
     }
@@ -352,8 +359,13 @@ fn traction_and_pressure_on_quadratic_faces_are_the_consistent_loads() {
         let nv = elements.num_vertices();
         let mut per_node = vec![Vec3::zeros(); elements.num_nodes()];
         let mut gradient = vec![0.0; 3 * elements.num_nodes()];
-        load.evaluate(elements.nodes(), 1.0, Some(&mut gradient), None)
-            .unwrap();
+        load.evaluate(
+            elements.nodes(),
+            &LoadLevel::FULL,
+            Some(&mut gradient),
+            None,
+        )
+        .unwrap();
         for (a, f) in per_node.iter_mut().enumerate() {
             *f = -Vec3::new(gradient[3 * a], gradient[3 * a + 1], gradient[3 * a + 2]);
         }
@@ -369,7 +381,7 @@ fn traction_and_pressure_on_quadratic_faces_are_the_consistent_loads() {
         }
         let pressure = FollowerPressure::new(Faces::new(&elements, &triangles).unwrap(), 3.0);
         let energy = pressure
-            .evaluate(elements.nodes(), 1.0, None, None)
+            .evaluate(elements.nodes(), &LoadLevel::FULL, None, None)
             .unwrap();
         assert!((energy - 3.0 * 0.3 * 0.2 * 0.1).abs() < 1e-15, "{energy}");
     }

@@ -5,13 +5,31 @@ use crate::SceneError;
 use std::fmt::Write;
 use std::path::Path;
 
-/// `iterations.csv`: one row per Newton iteration of every step (the final residuals of a
-/// step have empty `step_length`, `backtracks` and `shift`).
+/// `iterations.csv`: one row per Newton iteration of every attempt of every step (the final
+/// residuals of an attempt have empty `step_length`, `backtracks` and `shift`); `attempt`
+/// counts the attempts of a step, cut ones (with their `t`) before the accepted one.
 pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,iteration,force_residual,constraint_residual,step_length,backtracks,shift\n",
+        "step,t,iteration,force_residual,constraint_residual,step_length,backtracks,shift,attempt\n",
     );
     for s in history {
+        for (attempt, cut) in s.cuts.iter().enumerate() {
+            for (i, (f, c)) in cut
+                .force_residuals
+                .iter()
+                .zip(&cut.constraint_residuals)
+                .enumerate()
+            {
+                let _ = writeln!(
+                    out,
+                    "{},{:e},{i},{f:e},{c:e},,,,{}",
+                    s.step,
+                    cut.t,
+                    attempt + 1
+                );
+            }
+        }
+        let attempt = s.cuts.len() + 1;
         for (i, (f, c)) in s
             .force_residuals
             .iter()
@@ -27,7 +45,7 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
                 };
             let _ = writeln!(
                 out,
-                "{},{:e},{i},{f:e},{c:e},{len},{back},{shift}",
+                "{},{:e},{i},{f:e},{c:e},{len},{back},{shift},{attempt}",
                 s.step, s.t
             );
         }
@@ -38,12 +56,12 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
 /// `steps.csv`: one row per accepted step or frame.
 pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations\n",
+        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts\n",
     );
     for s in history {
         let _ = writeln!(
             out,
-            "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
+            "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{},{:e},{}",
             s.step,
             s.t,
             s.newton_iterations,
@@ -62,7 +80,9 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
             s.contact.force[2],
             s.contact.active_vertices,
             s.contact.max_penetration,
-            s.contact.iterations
+            s.contact.iterations,
+            s.increment,
+            s.cuts.len()
         );
     }
     super::write_file(path, out.as_bytes())

@@ -220,6 +220,8 @@ mod tests {
         StepRecord {
             step,
             t: step as f64 * 0.1,
+            increment: 0.1,
+            cuts: Vec::new(),
             newton_iterations: residuals.len() - 1,
             converged: true,
             force_residuals: residuals.to_vec(),

@@ -7,7 +7,7 @@ mod layout;
 
 use crate::model::{Model, NonlinearScheme};
 use crate::terms::{EnergyTerm, Inertia};
-use crate::{Settings, SolverError};
+use crate::{LoadLevel, Settings, SolverError};
 use isochor_mesh::Vec3;
 use layout::Layout;
 use std::time::{Duration, Instant};
@@ -113,7 +113,7 @@ impl<'m> System<'m> {
     pub fn energy(
         &mut self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         with_gradient: bool,
     ) -> Result<Evaluation, SolverError> {
         let start = Instant::now();
@@ -121,7 +121,7 @@ impl<'m> System<'m> {
         let (mut energy, mut magnitude) = (0.0, 0.0);
         for term in self.terms() {
             let g = with_gradient.then_some(gradient.as_mut_slice());
-            let e = term.evaluate(x, load, g, None)?;
+            let e = term.evaluate(x, level, g, None)?;
             energy += e;
             magnitude += e.abs() + term.rounding_scale();
         }
@@ -138,13 +138,13 @@ impl<'m> System<'m> {
     pub fn assemble(
         &mut self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         multipliers: Option<&[f64]>,
     ) -> Result<Evaluation, SolverError> {
         let start = Instant::now();
         let mut gradient = vec![0.0; 3 * x.len()];
         let mut values = std::mem::take(&mut self.hessian_values);
-        let result = self.fill(x, load, multipliers, &mut gradient, &mut values);
+        let result = self.fill(x, level, multipliers, &mut gradient, &mut values);
         self.hessian_values = values;
         let (energy, magnitude) = result?;
         self.assembly_time += start.elapsed();
@@ -158,7 +158,7 @@ impl<'m> System<'m> {
     fn fill(
         &mut self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         multipliers: Option<&[f64]>,
         gradient: &mut [f64],
         values: &mut [f64],
@@ -169,7 +169,7 @@ impl<'m> System<'m> {
             let len = self.offsets[block + 1] - self.offsets[block];
             let (mine, tail) = rest.split_at_mut(len);
             rest = tail;
-            let e = term.evaluate(x, load, Some(&mut *gradient), Some(mine))?;
+            let e = term.evaluate(x, level, Some(&mut *gradient), Some(mine))?;
             energy += e;
             magnitude += e.abs() + term.rounding_scale();
         }

@@ -1,7 +1,7 @@
 //! Degrees of freedom: which position components are unknowns and which are prescribed by
 //! Dirichlet conditions (removed from the linear systems, sec. 8.2 of Francu et al. 2021).
 
-use crate::{Dirichlet, SolverError};
+use crate::{Dirichlet, LoadLevel, SolverError};
 use isochor_mesh::Vec3;
 
 /// Sentinel for a prescribed DOF in [`Dofs::free_index`].
@@ -76,15 +76,17 @@ impl Dofs {
         !self.prescribed.is_empty()
     }
 
-    /// The prescribed DOFs with their target values at load parameter `t`.
+    /// The prescribed DOFs with their target values at `level`.
     pub fn targets<'a>(
         &'a self,
         rest: &'a [Vec3],
-        t: f64,
+        level: LoadLevel,
     ) -> impl Iterator<Item = (usize, f64)> + 'a {
         self.prescribed.iter().map(move |&(dof, c)| {
             let (v, k) = (dof / 3, dof % 3);
-            (dof, self.conditions[c].motion.position(&rest[v], t)[k])
+            let condition = &self.conditions[c];
+            let t = level.motion_parameter(condition.curve.as_ref());
+            (dof, condition.motion.position(&rest[v], t)[k])
         })
     }
 

@@ -20,12 +20,14 @@ use std::sync::Arc;
 
 mod dofs;
 mod problem;
+mod schedule;
 
 pub use dofs::Dofs;
 pub use problem::{
-    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Shape,
-    ZonalEnergy,
+    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, ScheduledLoad,
+    Shape, ZonalEnergy,
 };
+pub use schedule::{Curve, LoadLevel};
 
 /// How the nonlinear problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -62,6 +64,9 @@ pub struct Model {
     pub dofs: Dofs,
     /// Lumped (HRZ, positive) node masses.
     pub masses: Vec<f64>,
+    /// The abscissae of every load, motion and obstacle curve: levels quasi-static stepping
+    /// stops at, so that no corner of a load path is stepped over.
+    pub curve_corners: Vec<f64>,
     mu: f64,
 }
 
@@ -127,6 +132,14 @@ impl Model {
             obstacle.validate()?;
         }
         material.validate()?;
+        let curve_corners = loads
+            .iter()
+            .map(|l| l.curve.as_ref())
+            .chain(dirichlet.iter().map(|d| d.curve.as_ref()))
+            .chain(obstacles.iter().map(|o| o.curve.as_ref()))
+            .flatten()
+            .flat_map(|c| c.points().iter().map(|p| p.0))
+            .collect();
         let dofs = Dofs::new(mesh.num_nodes(), &dirichlet)?;
         let density = material.density;
         let masses: Vec<f64> = mesh.lumped_volumes().iter().map(|v| density * v).collect();
@@ -247,21 +260,20 @@ impl Model {
             )?;
             terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
         }
-        for load in loads {
+        for ScheduledLoad { load, curve } in loads {
             terms.push(match load {
                 Load::Gravity(g) => {
                     let weights: Vec<f64> =
                         mesh.node_volumes().iter().map(|v| density * v).collect();
-                    Box::new(DeadLoad::gravity(&weights, g))
+                    Box::new(DeadLoad::gravity(&weights, g).following(curve))
                 }
-                Load::Traction { faces, traction } => Box::new(DeadLoad::traction(
-                    mesh.nodes(),
-                    &Faces::new(&mesh, &faces)?,
-                    traction,
-                )),
-                Load::Pressure { faces, pressure } => {
-                    Box::new(FollowerPressure::new(Faces::new(&mesh, &faces)?, pressure))
-                }
+                Load::Traction { faces, traction } => Box::new(
+                    DeadLoad::traction(mesh.nodes(), &Faces::new(&mesh, &faces)?, traction)
+                        .following(curve),
+                ),
+                Load::Pressure { faces, pressure } => Box::new(
+                    FollowerPressure::new(Faces::new(&mesh, &faces)?, pressure).following(curve),
+                ),
             });
         }
         let rows = constraints
@@ -289,6 +301,7 @@ impl Model {
             elastic_material: elastic,
             dofs,
             masses,
+            curve_corners,
             mu,
             contact,
         };

@@ -2,6 +2,7 @@
 //! loads. [`crate::Simulation::new`] turns a [`Problem`] into a model holding only the terms
 //! it names.
 
+use super::schedule::Curve;
 use crate::SolverError;
 use isochor_constraints::NodalCompliance;
 use isochor_energies::{bulk_modulus, Lame, ParameterError};
@@ -262,8 +263,9 @@ impl Material {
     }
 }
 
-/// How a Dirichlet-constrained vertex moves with the load parameter `t` in `[0, 1]`
-/// (quasi-static) or with `t = time / duration` (dynamics).
+/// How a Dirichlet-constrained vertex moves with its parameter `t`: the load parameter in
+/// `[0, 1]` (quasi-static) or `time / duration` (dynamics), or the value of the condition's
+/// [`Curve`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Motion {
     /// Held at the rest position.
@@ -314,9 +316,12 @@ pub struct Dirichlet {
     pub axes: [bool; 3],
     /// How they move.
     pub motion: Motion,
+    /// The motion's parameter as a function of the load parameter or time (`None`: the
+    /// fraction of the run).
+    pub curve: Option<Curve>,
 }
 
-/// An external load, ramped by the load parameter in quasi-static stepping.
+/// An external load at full scale; a [`ScheduledLoad`] says how it is scaled over the run.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Load {
     /// Body force `rho g` per unit rest volume, as consistent nodal forces.
@@ -336,6 +341,22 @@ pub enum Load {
     },
 }
 
+/// A load and its scale over the run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScheduledLoad {
+    /// The load at scale 1.
+    pub load: Load,
+    /// Its scale as a function of the load parameter or time (`None`: ramped with the load
+    /// parameter in quasi-static stepping, constant in dynamics).
+    pub curve: Option<Curve>,
+}
+
+impl From<Load> for ScheduledLoad {
+    fn from(load: Load) -> Self {
+        ScheduledLoad { load, curve: None }
+    }
+}
+
 /// Everything a simulation needs.
 #[derive(Debug, Clone)]
 pub struct Problem {
@@ -351,7 +372,7 @@ pub struct Problem {
     /// Dirichlet conditions.
     pub dirichlet: Vec<Dirichlet>,
     /// External loads.
-    pub loads: Vec<Load>,
+    pub loads: Vec<ScheduledLoad>,
     /// Rigid obstacles the surface nodes may not enter (frictionless contact).
     pub obstacles: Vec<Obstacle>,
 }
@@ -376,13 +397,17 @@ pub enum Shape {
 }
 
 /// A rigid obstacle: a shape translated by `t * translate` with `t` the load parameter
-/// (quasi-static) or `time / duration` (dynamics), like a [`Motion::Translate`] condition.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// (quasi-static), `time / duration` (dynamics) or the value of its curve, like a
+/// [`Motion::Translate`] condition.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Obstacle {
     /// The shape at `t = 0`.
     pub shape: Shape,
     /// Displacement at `t = 1`.
     pub translate: Vec3,
+    /// The motion's parameter as a function of the load parameter or time (`None`: the
+    /// fraction of the run).
+    pub curve: Option<Curve>,
 }
 
 impl Obstacle {
@@ -391,6 +416,7 @@ impl Obstacle {
         Obstacle {
             shape,
             translate: Vec3::zeros(),
+            curve: None,
         }
     }
 

@@ -157,13 +157,13 @@ impl Newton {
                 let mut trial = x.to_vec();
                 add_scaled(&mut trial, &direction, alpha);
                 if system.is_valid(&trial) {
-                    let e = system.energy(&trial, target.load, false)?.energy;
+                    let e = system.energy(&trial, &target.level, false)?.energy;
                     let armijo = e <= eval.energy + ARMIJO * alpha * slope;
                     let accept = e.is_finite()
                         && (moving_boundary
                             || armijo
                             || (e <= eval.energy + noise && {
-                                let g = system.energy(&trial, target.load, true)?.gradient;
+                                let g = system.energy(&trial, &target.level, true)?.gradient;
                                 norm(&dofs.gather(&g)) < force
                             }));
                     if accept {
@@ -217,7 +217,7 @@ pub fn linearize(
     target: &StepTarget,
 ) -> Result<Linearized, SolverError> {
     let d_fixed = gap(x, &target.prescribed, 3 * x.len());
-    let eval = system.assemble(x, target.load, None)?;
+    let eval = system.assemble(x, &target.level, None)?;
     let residual = system.model.dofs.gather(&eval.gradient);
     let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
     system

@@ -18,7 +18,7 @@ use crate::linear::{
 };
 use crate::model::NonlinearScheme;
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::{IterationReport, LinearSolver, SolverError, StepReport};
+use crate::{IterationReport, LinearSolver, LoadLevel, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, DVector};
@@ -187,10 +187,10 @@ impl SaddleNewton {
         system: &mut System<'_>,
         x: &[Vec3],
         p: &[f64],
-        load: f64,
+        level: &LoadLevel,
     ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
         let constraints = system.model.constraints.clone().expect("checked in new");
-        let eval = system.energy(x, load, true)?;
+        let eval = system.energy(x, level, true)?;
         let mut sigma = eval.gradient;
         let pattern = &self.jacobian_pattern;
         let mut g = vec![0.0; pattern.len()];
@@ -218,7 +218,7 @@ impl SaddleNewton {
             || SolverError::InvalidProblem("saddle-point Newton without constraints".into());
         let constraints = system.model.constraints.clone().ok_or_else(missing)?;
         let d_fixed = gap(x, &target.prescribed, 3 * x.len());
-        let eval = system.assemble(x, target.load, Some(p))?;
+        let eval = system.assemble(x, &target.level, Some(p))?;
         let jacobian = system.jacobian.as_ref().ok_or_else(missing)?;
         let mut sigma = eval.gradient;
         for (&(row, dof), v) in self.jacobian_pattern.iter().zip(&system.jacobian_values) {
@@ -322,7 +322,7 @@ impl SaddleNewton {
                 add_scaled(&mut trial_x, &direction, alpha);
                 let trial_p: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + alpha * b).collect();
                 if system.is_valid(&trial_x) {
-                    let (s, t) = self.residuals(system, &trial_x, &trial_p, target.load)?;
+                    let (s, t) = self.residuals(system, &trial_x, &trial_p, &target.level)?;
                     let s_f = system.model.dofs.gather(&s);
                     let m = merit(&s_f, &t);
                     // Watchdog: a few full steps may raise the merit (the Maratos effect of
@@ -352,7 +352,7 @@ impl SaddleNewton {
                             trial_p.iter().zip(&cp).map(|(a, b)| a + b).collect();
                         if system.is_valid(&corrected_x) {
                             let (s, t) =
-                                self.residuals(system, &corrected_x, &corrected_p, target.load)?;
+                                self.residuals(system, &corrected_x, &corrected_p, &target.level)?;
                             if acceptable(merit(&system.model.dofs.gather(&s), &t), 1.0) {
                                 accepted = Some((corrected_x, corrected_p, 0));
                                 break;

@@ -1,12 +1,13 @@
 //! What one step asks of a nonlinear solver, and small vector helpers shared by them.
 
+use crate::LoadLevel;
 use isochor_mesh::Vec3;
 
 /// The goal of one load or time step.
 #[derive(Debug, Clone)]
 pub struct StepTarget {
-    /// Load parameter the external terms are scaled by.
-    pub load: f64,
+    /// Where the external loads stand.
+    pub level: LoadLevel,
     /// Target values of the prescribed DOFs.
     pub prescribed: Vec<(usize, f64)>,
     /// Absolute force residual tolerance.

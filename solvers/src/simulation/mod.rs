@@ -8,11 +8,14 @@ use crate::nonlinear::saddle::SaddleNewton;
 use crate::nonlinear::target::{norm, StepTarget};
 
 mod report;
+mod stepper;
 
 use crate::terms::Inertia;
-use crate::{Method, Problem, Settings, SolverError};
+use crate::{LoadLevel, Method, Problem, Settings, SolverError};
 use faer::sparse::SparseColMat;
 pub use report::{IterationReport, StepReport, Timings};
+use stepper::Stepper;
+pub use stepper::{Adaptive, Attempt, Progress, StepControl};
 
 use isochor_mesh::element::deformation_gradient;
 use isochor_mesh::{ElementMesh, Vec3};
@@ -22,11 +25,53 @@ use std::time::{Duration, Instant};
 /// How time or load advances.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Stepping {
-    /// Loads and prescribed motions ramped linearly over `steps` equilibrium solves.
-    QuasiStatic { steps: usize },
-    /// Implicit Euler (eq. 20-21) with time step `dt` for `frames` steps; prescribed
-    /// motions follow `t = time / (dt * frames)`, loads are constant.
+    /// Loads and prescribed motions follow the load parameter from 0 to 1; the levels
+    /// `k / steps` are the frames, and `control` chooses the increments between them.
+    QuasiStatic { steps: usize, control: StepControl },
+    /// Implicit Euler (eq. 20-21) with time step `dt` for `frames` steps; prescribed motions
+    /// follow `time / (dt * frames)`, loads are constant (unless they follow curves). A failed
+    /// step is retried in substeps (`dt/2`, `dt/4`, ... down to `dt/1024`) that end on the
+    /// frame's time.
     ImplicitEuler { dt: f64, frames: usize },
+}
+
+impl Stepping {
+    /// Quasi-static stepping with one solve per level `k / steps`.
+    pub fn quasi_static(steps: usize) -> Self {
+        Stepping::QuasiStatic {
+            steps,
+            control: StepControl::Fixed,
+        }
+    }
+
+    /// Quasi-static stepping with adaptive increments (the defaults of [`Adaptive`]) and
+    /// frames at the levels `k / steps`.
+    pub fn adaptive(steps: usize) -> Self {
+        Stepping::QuasiStatic {
+            steps,
+            control: StepControl::Adaptive(Adaptive::default()),
+        }
+    }
+
+    /// The number of frames (levels written as results).
+    pub fn frames(&self) -> usize {
+        match *self {
+            Stepping::QuasiStatic { steps, .. } => steps,
+            Stepping::ImplicitEuler { frames, .. } => frames,
+        }
+    }
+}
+
+/// What continues an interrupted run exactly: the state, where the stepping stood, and the
+/// contact multipliers (see [`Simulation::restore`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpoint {
+    /// The last accepted state.
+    pub state: State,
+    /// Where the stepping stood after it.
+    pub progress: Progress,
+    /// The contact multipliers (empty without obstacles).
+    pub contact_multipliers: Vec<f64>,
 }
 
 /// The unknowns of a simulation.
@@ -57,8 +102,12 @@ pub struct Energies {
 /// What the observer sees after each accepted step.
 #[derive(Debug)]
 pub struct Frame<'a> {
-    /// Step or frame index, from 1.
+    /// Accepted step, from 1.
     pub index: usize,
+    /// The frame this step ends on (from 1), if it ends on one.
+    pub frame: Option<usize>,
+    /// Where the stepping stands after this step.
+    pub progress: Progress,
     /// The accepted state.
     pub state: &'a State,
     /// Pressure per tet (see [`crate::Simulation::tet_pressures`]).
@@ -71,6 +120,21 @@ pub struct Frame<'a> {
     pub contact_forces: Vec<Vec3>,
     /// The step's iteration log.
     pub report: &'a StepReport,
+    /// The failed attempts (cut steps) since the previous accepted step.
+    pub cuts: &'a [StepReport],
+    /// The contact multipliers of the state (empty without obstacles).
+    pub contact_multipliers: Vec<f64>,
+}
+
+impl Frame<'_> {
+    /// What continues the run from this step.
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            state: self.state.clone(),
+            progress: self.progress,
+            contact_multipliers: self.contact_multipliers.clone(),
+        }
+    }
 }
 
 /// A run that ended early: why, the last accepted state, and every step's log.
@@ -80,7 +144,7 @@ pub struct SimulationFailure {
     /// What went wrong.
     #[source]
     pub error: SolverError,
-    /// The step that failed (1-based).
+    /// The step that failed (1-based, counting accepted steps).
     pub failed_step: usize,
     /// The last converged state (the rest state if the first step failed).
     pub last_state: State,
@@ -91,7 +155,7 @@ pub struct SimulationFailure {
 /// A completed run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
-    /// Reports of every step.
+    /// Reports of every attempted step, cut ones included.
     pub reports: Vec<StepReport>,
     /// The final state.
     pub final_state: State,
@@ -102,9 +166,14 @@ pub struct RunSummary {
 }
 
 impl RunSummary {
-    /// Newton (or dual) iterations over all steps.
+    /// Newton (or dual) iterations over all steps, cut ones included.
     pub fn newton_iterations(&self) -> usize {
         self.reports.iter().map(StepReport::newton_iterations).sum()
+    }
+
+    /// Failed attempts that were retried with a smaller increment.
+    pub fn cuts(&self) -> usize {
+        self.reports.iter().filter(|r| r.failure.is_some()).count()
     }
 }
 
@@ -114,6 +183,8 @@ pub struct Simulation {
     model: Model,
     settings: Settings,
     state: State,
+    /// Where a restored run continues (see [`Simulation::restore`]).
+    resume: Option<Progress>,
     /// The external loads' potential at rest, the zero of [`Energies::external`].
     rest_external: f64,
 }
@@ -278,14 +349,49 @@ impl Simulation {
             .terms
             .iter()
             .filter(|t| t.is_external())
-            .map(|t| t.evaluate(rest, 1.0, None, None))
+            .map(|t| t.evaluate(rest, &LoadLevel::FULL, None, None))
             .sum::<Result<f64, _>>()?;
         Ok(Simulation {
             model,
             settings,
             state,
+            resume: None,
             rest_external,
         })
+    }
+
+    /// Continues from `checkpoint` (taken from a [`Frame`] of a run of this problem with the
+    /// same stepping): the next [`Self::run`] starts where that run stood, and gives the
+    /// results the uninterrupted run gives, bit for bit.
+    pub fn restore(&mut self, checkpoint: Checkpoint) -> Result<(), SolverError> {
+        let Checkpoint {
+            state,
+            progress,
+            contact_multipliers,
+        } = checkpoint;
+        let n = self.model.mesh.num_nodes();
+        if state.positions.len() != n
+            || state.velocities.len() != n
+            || state.multipliers.len() != self.state.multipliers.len()
+        {
+            return Err(SolverError::InvalidProblem(format!(
+                "the checkpoint holds {} positions, {} velocities and {} multipliers; this problem has {n} nodes and {} multipliers",
+                state.positions.len(),
+                state.velocities.len(),
+                state.multipliers.len(),
+                self.state.multipliers.len()
+            )));
+        }
+        if let Some(contact) = &self.model.contact {
+            contact.set_multipliers(contact_multipliers)?;
+        } else if !contact_multipliers.is_empty() {
+            return Err(SolverError::InvalidProblem(
+                "the checkpoint holds contact multipliers, but the problem has no obstacles".into(),
+            ));
+        }
+        self.state = state;
+        self.resume = Some(progress);
+        Ok(())
     }
 
     /// The mesh in its rest configuration.
@@ -319,7 +425,7 @@ impl Simulation {
         let x = self.model.mesh.nodes();
         let mut external = vec![0.0; 3 * x.len()];
         for term in self.model.terms.iter().filter(|t| t.is_external()) {
-            term.evaluate(x, 1.0, Some(&mut external), None)?;
+            term.evaluate(x, &LoadLevel::FULL, Some(&mut external), None)?;
         }
         let mesh = self.model.mesh.corners();
         let h2 = (mesh.rest_volume() / mesh.num_tets() as f64).powf(2.0 / 3.0);
@@ -374,7 +480,7 @@ impl Simulation {
         };
         for term in &self.model.terms {
             let e = term
-                .evaluate(&state.positions, 1.0, None, None)
+                .evaluate(&state.positions, &LoadLevel::FULL, None, None)
                 .unwrap_or(f64::NAN);
             if term.is_external() {
                 energies.external += e;
@@ -388,25 +494,34 @@ impl Simulation {
     }
 
     /// The linearization of step `step` (from 1) of `stepping` from the current state (the
-    /// previous step): [`Linearizer::newton_system`] gives the linear system the method's
-    /// nonlinear solver builds at any trial state, for tests against finite differences of
-    /// its residual. Obstacles, if any, are moved to the step's position (as [`Self::run`]
-    /// does at each step) and keep their multipliers.
+    /// previous step), taken with one solve per frame: [`Linearizer::newton_system`] gives
+    /// the linear system the method's nonlinear solver builds at any trial state, for tests
+    /// against finite differences of its residual. Obstacles, if any, are moved to the
+    /// step's position (as [`Self::run`] does at each step) and keep their multipliers.
     pub fn linearizer(
         &mut self,
         stepping: Stepping,
         step: usize,
     ) -> Result<Linearizer<'_>, SolverError> {
         check_stepping(stepping)?;
-        let (steps, dt) = match stepping {
-            Stepping::QuasiStatic { steps } => (steps, None),
-            Stepping::ImplicitEuler { dt, frames } => (frames, Some(dt)),
+        let (level, dt) = match stepping {
+            Stepping::QuasiStatic { steps, .. } => {
+                (LoadLevel::quasi_static(step as f64 / steps as f64), None)
+            }
+            Stepping::ImplicitEuler { dt, frames } => (
+                LoadLevel {
+                    t: step as f64 * dt,
+                    ramp: 1.0,
+                    fraction: step as f64 / frames as f64,
+                },
+                Some(dt),
+            ),
         };
         let force_tolerance = self.settings.force_tolerance * self.force_scale()?;
         self.model.set_contact_stiffness(dt);
         let inertia = dt.map(|dt| {
             let mut inertia = Inertia::new(self.model.masses.clone(), dt);
-            inertia.begin_step(&self.state.positions, &self.state.velocities);
+            inertia.begin_step(&self.state.positions, &self.state.velocities, dt);
             inertia
         });
         let system = System::new(&self.model, inertia, self.settings)?;
@@ -416,9 +531,9 @@ impl Simulation {
                 Some(SaddleNewton::new(&system)?)
             }
         };
-        let (fraction, _, target) = step_target(&self.model, steps, dt, step, force_tolerance);
+        let target = step_target(&self.model, level, force_tolerance);
         if let Some(contact) = &self.model.contact {
-            contact.set_time(fraction);
+            contact.set_level(level);
         }
         Ok(Linearizer {
             system,
@@ -428,8 +543,11 @@ impl Simulation {
         })
     }
 
-    /// Runs `stepping` from the current state, calling `observer` after every accepted step.
-    /// On failure the state is left at the last accepted step, which the error carries too.
+    /// Runs `stepping` from the current state (or from where a restored checkpoint stood),
+    /// calling `observer` after every accepted step. A failed step is retried with half the
+    /// increment (adaptive quasi-static stepping, dynamics) from the last accepted state,
+    /// contact multipliers included; when no retry is left the run ends, the state left at
+    /// the last accepted step, which the error carries too.
     pub fn run(
         &mut self,
         stepping: Stepping,
@@ -445,9 +563,9 @@ impl Simulation {
                 reports: reports.clone(),
             })
         };
-        let (steps, dt) = match stepping {
-            Stepping::QuasiStatic { steps } => (steps, None),
-            Stepping::ImplicitEuler { dt, frames } => (frames, Some(dt)),
+        let dt = match stepping {
+            Stepping::QuasiStatic { .. } => None,
+            Stepping::ImplicitEuler { dt, .. } => Some(dt),
         };
         if let Err(e) = check_stepping(stepping) {
             return Err(fail(e, 0, &self.state, &reports));
@@ -463,29 +581,42 @@ impl Simulation {
             Ok(s) => s,
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
         };
+        let stepper = Stepper::new(&stepping, &self.model.curve_corners);
+        let mut progress = self
+            .resume
+            .take()
+            .unwrap_or_else(|| Progress::start(&stepping));
         if !system.is_valid(&self.state.positions) {
             let e = SolverError::InvalidInitialState(format!(
                 "{} tets are inverted or degenerate where the energy is undefined",
                 self.model.mesh.count_inverted(&self.state.positions)
             ));
-            return Err(fail(e, 1, &self.state, &reports));
+            return Err(fail(e, progress.steps + 1, &self.state, &reports));
         }
         let mut max_inverted = self.model.mesh.count_inverted(&self.state.positions);
-        for step in 1..=steps {
+        let mut cuts: Vec<StepReport> = Vec::new();
+        while !stepper.finished(&progress) {
             let step_start = Instant::now();
-            let (fraction, t, target) = step_target(&self.model, steps, dt, step, force_tolerance);
+            let attempt = stepper.next(&progress);
+            let step = progress.steps + 1;
+            let target = step_target(&self.model, attempt.level, force_tolerance);
             if let Some(inertia) = &mut system.inertia {
-                inertia.begin_step(&self.state.positions, &self.state.velocities);
+                inertia.begin_step(
+                    &self.state.positions,
+                    &self.state.velocities,
+                    attempt.increment,
+                );
             }
             let contact_start = system.model.contact.as_ref().map(|c| c.snapshot());
             if let Some(contact) = &system.model.contact {
-                contact.set_time(fraction);
+                contact.set_level(attempt.level);
             }
             let mut x = self.state.positions.clone();
             let mut p = self.state.multipliers.clone();
             let mut report = StepReport {
                 step,
-                t,
+                t: attempt.level.t,
+                increment: attempt.increment,
                 ..StepReport::default()
             };
             // The contact's projected multiplier updates (its module docs) around the
@@ -524,19 +655,29 @@ impl Simulation {
                 report.contact = contact.summary(&x);
             }
             report.wall_time = step_start.elapsed();
-            reports.push(report);
             if let Err(e) = result {
                 // Back to the last accepted step, contact multipliers included.
                 if let (Some(contact), Some(start)) = (&system.model.contact, contact_start) {
                     contact.restore(start);
                 }
-                return Err(fail(e, step, &self.state, &reports));
+                report.converged = false;
+                report.failure = Some(e.to_string());
+                reports.push(report.clone());
+                match stepper.cut(&progress, &attempt, e) {
+                    Ok(cut) => {
+                        cuts.push(report);
+                        progress = cut;
+                        continue;
+                    }
+                    Err(e) => return Err(fail(e, step, &self.state, &reports)),
+                }
             }
+            reports.push(report);
             let velocities = match dt {
-                Some(dt) => x
+                Some(_) => x
                     .iter()
                     .zip(&self.state.positions)
-                    .map(|(a, b)| (a - b) / dt)
+                    .map(|(a, b)| (a - b) / attempt.increment)
                     .collect(),
                 None => self.state.velocities.clone(),
             };
@@ -544,25 +685,29 @@ impl Simulation {
                 positions: x,
                 velocities,
                 multipliers: p,
-                t,
+                t: attempt.level.t,
             };
+            let report = reports.last().expect("pushed above");
+            progress = stepper.accept(&progress, &attempt, report.newton_iterations());
             let inverted = self.model.mesh.count_inverted(&self.state.positions);
             max_inverted = max_inverted.max(inverted);
-            let report = reports.last().expect("pushed above");
+            let contact = self.model.contact.as_ref();
             observer(&Frame {
                 index: step,
+                frame: attempt.frame,
+                progress,
                 state: &self.state,
                 tet_pressures: self.tet_pressures(&self.state),
                 energies: self.energies(&self.state),
                 inverted_tets: inverted,
-                contact_forces: self
-                    .model
-                    .contact
-                    .as_ref()
+                contact_forces: contact
                     .map(|c| c.vertex_forces(&self.state.positions))
                     .unwrap_or_default(),
                 report,
+                cuts: &cuts,
+                contact_multipliers: contact.map(|c| c.multipliers()).unwrap_or_default(),
             });
+            cuts.clear();
         }
         Ok(RunSummary {
             reports,
@@ -592,27 +737,13 @@ fn setup(
     Ok((system, solver))
 }
 
-/// Step `step` (from 1) of `steps`: its fraction of the run (the parameter of prescribed
-/// motions and obstacles), its load parameter or time `t`, and the target of its solve
-/// (loads ramped in quasi-static stepping, constant in dynamics).
-fn step_target(
-    model: &Model,
-    steps: usize,
-    dt: Option<f64>,
-    step: usize,
-    force_tolerance: f64,
-) -> (f64, f64, StepTarget) {
-    let fraction = step as f64 / steps as f64;
-    let (load, t) = match dt {
-        None => (fraction, fraction),
-        Some(dt) => (1.0, step as f64 * dt),
-    };
-    let target = StepTarget {
-        load,
-        prescribed: model.dofs.targets(model.mesh.nodes(), fraction).collect(),
+/// The target of a solve at `level`: the loads' level and the prescribed DOFs' values.
+fn step_target(model: &Model, level: LoadLevel, force_tolerance: f64) -> StepTarget {
+    StepTarget {
+        level,
+        prescribed: model.dofs.targets(model.mesh.nodes(), level).collect(),
         force_tolerance,
-    };
-    (fraction, t, target)
+    }
 }
 
 /// Mean Cauchy stress `tr(P F^T) / (3 J)` of the model's material at the centroid of element
@@ -653,9 +784,18 @@ fn check_settings(s: &Settings) -> Result<(), SolverError> {
 
 fn check_stepping(stepping: Stepping) -> Result<(), SolverError> {
     match stepping {
-        Stepping::QuasiStatic { steps: 0 } => Err(SolverError::InvalidProblem(
+        Stepping::QuasiStatic { steps: 0, .. } => Err(SolverError::InvalidProblem(
             "steps must be at least 1".into(),
         )),
+        Stepping::QuasiStatic {
+            control: StepControl::Adaptive(a),
+            ..
+        } if !(a.first > 0.0 && a.first <= 1.0 && a.min > 0.0 && a.min <= a.first) => {
+            Err(SolverError::InvalidProblem(format!(
+                "adaptive stepping needs 0 < min increment ({}) <= first increment ({}) <= 1",
+                a.min, a.first
+            )))
+        }
         Stepping::ImplicitEuler { frames: 0, .. } => Err(SolverError::InvalidProblem(
             "frames must be at least 1".into(),
         )),

@@ -42,8 +42,10 @@ impl std::ops::AddAssign for Timings {
 pub struct StepReport {
     /// Step index, from 1.
     pub step: usize,
-    /// Load parameter in `[0, 1]` (quasi-static) or time in seconds (dynamics).
+    /// Load parameter in `[0, 1]` (quasi-static) or time in seconds (dynamics) at its end.
     pub t: f64,
+    /// The increment of the load parameter or time it took.
+    pub increment: f64,
     /// Every iteration, in order.
     pub iterations: Vec<IterationReport>,
     /// Final force residual norm.
@@ -60,6 +62,9 @@ pub struct StepReport {
     pub contact_iterations: usize,
     /// Contact forces at the accepted state (zero without obstacles).
     pub contact: ContactSummary,
+    /// Why the attempt failed, if it was cut (retried with a smaller increment) or ended
+    /// the run.
+    pub failure: Option<String>,
 }
 
 impl StepReport {

@@ -9,7 +9,7 @@
 //!   fixed point `phi = C p`, the gradient is `G^T p`, so the solution is the mixed one.
 
 use super::EnergyTerm;
-use crate::SolverError;
+use crate::{LoadLevel, SolverError};
 use isochor_constraints::ConstraintSet;
 use isochor_mesh::Vec3;
 use std::sync::{Arc, RwLock};
@@ -129,7 +129,7 @@ impl EnergyTerm for AugmentedConstraints {
     fn evaluate(
         &self,
         x: &[Vec3],
-        _load: f64,
+        _level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {

@@ -19,7 +19,7 @@
 //! saddle-point Newton with zero-compliance constraints, dual ascent) handles it unchanged.
 
 use super::EnergyTerm;
-use crate::{Obstacle, SolverError};
+use crate::{LoadLevel, Obstacle, SolverError};
 use isochor_mesh::Vec3;
 use nalgebra::Matrix3;
 use std::sync::{RwLock, RwLockWriteGuard};
@@ -35,13 +35,12 @@ pub struct ContactSummary {
     pub max_penetration: f64,
 }
 
-/// Multipliers, one per (candidate vertex, obstacle) pair, vertex-major, and the obstacles'
-/// motion parameter.
-/// The multipliers and obstacle time of a [`Contact`], to roll a failed step back.
+/// The multipliers (one per candidate vertex and obstacle, vertex-major) and the load level
+/// the obstacles stand at: what rolls a failed step back.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactState {
     multipliers: Vec<f64>,
-    t: f64,
+    level: LoadLevel,
 }
 
 /// Augmented-Lagrangian contact of `vertices` against `obstacles`.
@@ -65,7 +64,7 @@ impl Contact {
             stiffness,
             state: RwLock::new(ContactState {
                 multipliers: vec![0.0; pairs],
-                t: 0.0,
+                level: LoadLevel::quasi_static(0.0),
             }),
         }
     }
@@ -85,9 +84,9 @@ impl Contact {
         self.stiffness = stiffness;
     }
 
-    /// Moves the obstacles to parameter `t` (load parameter or `time / duration`).
-    pub fn set_time(&self, t: f64) {
-        self.state().t = t;
+    /// Moves the obstacles to where `level` puts them.
+    pub fn set_level(&self, level: LoadLevel) {
+        self.state().level = level;
     }
 
     /// The multipliers (normal force magnitudes), vertex-major over the obstacles.
@@ -95,7 +94,21 @@ impl Contact {
         self.state().multipliers.clone()
     }
 
-    /// A copy of the multipliers and the obstacle time.
+    /// Replaces the multipliers (a resumed run's); an error if their number is wrong.
+    pub fn set_multipliers(&self, multipliers: Vec<f64>) -> Result<(), SolverError> {
+        let mut state = self.state();
+        if multipliers.len() != state.multipliers.len() {
+            return Err(SolverError::InvalidProblem(format!(
+                "{} contact multipliers given for {} vertex-obstacle pairs",
+                multipliers.len(),
+                state.multipliers.len()
+            )));
+        }
+        state.multipliers = multipliers;
+        Ok(())
+    }
+
+    /// A copy of the multipliers and the obstacles' level.
     pub fn snapshot(&self) -> ContactState {
         self.state().clone()
     }
@@ -109,10 +122,11 @@ impl Contact {
     fn pairs<'a>(
         &'a self,
         x: &'a [Vec3],
-        t: f64,
+        level: LoadLevel,
     ) -> impl Iterator<Item = (usize, usize, f64, Vec3, Matrix3<f64>)> + 'a {
         self.vertices.iter().enumerate().flat_map(move |(a, &v)| {
             self.obstacles.iter().enumerate().map(move |(k, o)| {
+                let t = level.motion_parameter(o.curve.as_ref());
                 let (d, n, h) = o.distance(&x[v], t);
                 (a, k, d, n, h)
             })
@@ -125,10 +139,10 @@ impl Contact {
     /// to it).
     pub fn update(&self, x: &[Vec3], tolerance: f64) -> bool {
         let mut state = self.state();
-        let t = state.t;
+        let level = state.level;
         let m = self.obstacles.len();
         let mut converged = true;
-        for (a, k, d, _, _) in self.pairs(x, t) {
+        for (a, k, d, _, _) in self.pairs(x, level) {
             let rho = self.stiffness[a];
             let lambda = &mut state.multipliers[a * m + k];
             let next = (*lambda - rho * d).max(0.0);
@@ -147,7 +161,7 @@ impl Contact {
         let state = self.state();
         let m = self.obstacles.len();
         let mut forces = vec![Vec3::zeros(); x.len()];
-        for (a, k, _, n, _) in self.pairs(x, state.t) {
+        for (a, k, _, n, _) in self.pairs(x, state.level) {
             forces[self.vertices[a]] += state.multipliers[a * m + k] * n;
         }
         forces
@@ -160,7 +174,7 @@ impl Contact {
         let m = self.obstacles.len();
         let mut summary = ContactSummary::default();
         let mut active = vec![false; self.vertices.len()];
-        for (a, k, d, n, _) in self.pairs(x, state.t) {
+        for (a, k, d, n, _) in self.pairs(x, state.level) {
             let f = state.multipliers[a * m + k];
             summary.force += f * n;
             active[a] |= f > 0.0;
@@ -191,20 +205,20 @@ impl EnergyTerm for Contact {
     fn evaluate(
         &self,
         x: &[Vec3],
-        _load: f64,
+        _level: &LoadLevel,
         mut gradient: Option<&mut [f64]>,
         mut hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let (multipliers, t) = {
+        let (multipliers, level) = {
             let state = self.state();
-            (state.multipliers.clone(), state.t)
+            (state.multipliers.clone(), state.level)
         };
         if let Some(h) = hessian.as_deref_mut() {
             h.fill(0.0);
         }
         let m = self.obstacles.len();
         let mut energy = 0.0;
-        for (a, k, d, n, hd) in self.pairs(x, t) {
+        for (a, k, d, n, hd) in self.pairs(x, level) {
             let rho = self.stiffness[a];
             let lambda = multipliers[a * m + k];
             let s = lambda - rho * d;

@@ -1,11 +1,11 @@
-//! Dead loads: constant nodal forces `f_a`, ramped by the load parameter, with potential
-//! `-load sum_a f_a . x_a`. Both are consistent loads, `f_a = integral N_a b`: gravity
+//! Dead loads: constant nodal forces `f_a` scaled by `s` (the load ramp or the load's curve),
+//! with potential `-s sum_a f_a . x_a`. Both are consistent loads, `f_a = integral N_a b`: gravity
 //! `b = rho g` over the volume, a dead traction `t` over the rest area of the loaded faces
 //! (on 3-node faces `t A_f / 3` per vertex, on 6-node flat faces `t A_f / 3` per mid-edge
 //! node and nothing at the corners).
 
 use super::{EnergyTerm, Faces};
-use crate::SolverError;
+use crate::{Curve, LoadLevel, SolverError};
 use isochor_mesh::Vec3;
 
 /// Constant nodal forces.
@@ -13,6 +13,7 @@ use isochor_mesh::Vec3;
 pub struct DeadLoad {
     name: &'static str,
     forces: Vec<(usize, Vec3)>,
+    curve: Option<Curve>,
 }
 
 impl DeadLoad {
@@ -26,6 +27,7 @@ impl DeadLoad {
                 .enumerate()
                 .map(|(i, m)| (i, acceleration * *m))
                 .collect(),
+            curve: None,
         }
     }
 
@@ -39,7 +41,13 @@ impl DeadLoad {
         DeadLoad {
             name: "traction",
             forces,
+            curve: None,
         }
+    }
+
+    /// The same load scaled by `curve` (`None`: the default ramp).
+    pub fn following(self, curve: Option<Curve>) -> Self {
+        DeadLoad { curve, ..self }
     }
 
     /// Total force at full load.
@@ -60,10 +68,11 @@ impl EnergyTerm for DeadLoad {
     fn evaluate(
         &self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         _hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
+        let load = level.load_scale(self.curve.as_ref());
         if let Some(g) = gradient {
             for (v, f) in &self.forces {
                 for k in 0..3 {

@@ -2,7 +2,7 @@
 //! integrated by quadrature), evaluated in parallel over elements.
 
 use super::{block_pattern, scatter, EnergyTerm};
-use crate::SolverError;
+use crate::{LoadLevel, SolverError};
 use isochor_energies::element::{self, RestPoints};
 use isochor_energies::{project_to_psd, Hyperelastic};
 use isochor_mesh::element::{deformation_gradient, RestGeometry, TetElement, TetQuadrature};
@@ -115,7 +115,7 @@ impl EnergyTerm for Elastic {
     fn evaluate(
         &self,
         x: &[Vec3],
-        _load: f64,
+        _level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {

@@ -3,7 +3,7 @@
 //! 6-node boundary faces of the mesh.
 
 use super::{block_pattern, scatter, EnergyTerm, Faces};
-use crate::SolverError;
+use crate::{LoadLevel, SolverError};
 use isochor_energies::triangle::{area_element, RestFacePoints};
 use isochor_energies::Epidermis;
 use isochor_mesh::{ElementMesh, Vec3};
@@ -65,7 +65,7 @@ impl EnergyTerm for EpidermisTerm {
     fn evaluate(
         &self,
         x: &[Vec3],
-        _load: f64,
+        _level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {

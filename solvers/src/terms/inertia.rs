@@ -2,7 +2,7 @@
 //! of Francu et al. 2021) with a lumped mass matrix.
 
 use super::EnergyTerm;
-use crate::SolverError;
+use crate::{LoadLevel, SolverError};
 use isochor_mesh::Vec3;
 
 /// Inertia of one implicit Euler step.
@@ -15,7 +15,7 @@ pub struct Inertia {
 
 impl Inertia {
     /// Inertia with lumped vertex `masses` and time step `dt`; call [`Inertia::begin_step`]
-    /// before each step.
+    /// before each step (which may change the step).
     pub fn new(masses: Vec<f64>, dt: f64) -> Self {
         let n = masses.len();
         Inertia {
@@ -25,8 +25,9 @@ impl Inertia {
         }
     }
 
-    /// Sets the inertial prediction `x^n + h v^n`.
-    pub fn begin_step(&mut self, x: &[Vec3], v: &[Vec3]) {
+    /// Sets the time step `h` and the inertial prediction `x^n + h v^n`.
+    pub fn begin_step(&mut self, x: &[Vec3], v: &[Vec3], dt: f64) {
+        self.dt = dt;
         for ((p, xi), vi) in self.predicted.iter_mut().zip(x).zip(v) {
             *p = xi + self.dt * vi;
         }
@@ -45,7 +46,7 @@ impl EnergyTerm for Inertia {
     fn evaluate(
         &self,
         x: &[Vec3],
-        _load: f64,
+        _level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {

@@ -20,13 +20,13 @@ pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
 
-use crate::SolverError;
+use crate::{LoadLevel, SolverError};
 use isochor_mesh::Vec3;
 
 /// A term of the total energy `E(x)` minimized (or made stationary) by the solvers.
 ///
-/// `load` is the load parameter in `[0, 1]` of quasi-static stepping (1 in dynamics): external
-/// loads scale with it, stored energies ignore it.
+/// `level` says where the run's loads stand: external loads scale with it (by their curve or
+/// the default ramp), stored energies ignore it.
 pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
     /// Short name for reports.
     fn name(&self) -> &'static str;
@@ -40,7 +40,7 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
     fn evaluate(
         &self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError>;

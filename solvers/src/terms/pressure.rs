@@ -1,4 +1,5 @@
-//! Follower pressure on a surface: potential `load p V_f(x)` with
+//! Follower pressure on a surface: potential `s p V_f(x)` (`s` the load ramp or the load's
+//! curve) with
 //! `V_f(x) = (1/3) integral x . n da = (1/3) sum_faces sum_q w_q x . (dx/dxi x dx/deta)`, the
 //! signed volume of the cones from the origin to the faces (on a 3-node face the one-point
 //! rule gives `x0 . (x1 x x2) / 6`; on a 6-node face the degree-4 rule is exact). Its gradient
@@ -9,7 +10,7 @@
 //! the chamber inflates).
 
 use super::{block_pattern, scatter, EnergyTerm, Faces};
-use crate::SolverError;
+use crate::{Curve, LoadLevel, SolverError};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, Matrix3};
 
@@ -18,12 +19,22 @@ use nalgebra::{DMatrix, Matrix3};
 pub struct FollowerPressure {
     faces: Faces,
     pressure: f64,
+    curve: Option<Curve>,
 }
 
 impl FollowerPressure {
     /// Pressure `pressure` on `faces` (body-outward orientation).
     pub fn new(faces: Faces, pressure: f64) -> Self {
-        FollowerPressure { faces, pressure }
+        FollowerPressure {
+            faces,
+            pressure,
+            curve: None,
+        }
+    }
+
+    /// The same pressure scaled by `curve` (`None`: the default ramp).
+    pub fn following(self, curve: Option<Curve>) -> Self {
+        FollowerPressure { curve, ..self }
     }
 }
 
@@ -44,11 +55,11 @@ impl EnergyTerm for FollowerPressure {
     fn evaluate(
         &self,
         x: &[Vec3],
-        load: f64,
+        level: &LoadLevel,
         mut gradient: Option<&mut [f64]>,
         mut hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let s = load * self.pressure / 3.0;
+        let s = level.load_scale(self.curve.as_ref()) * self.pressure / 3.0;
         let n = self.faces.nodes_per_face();
         let mut local = vec![0.0; 3 * n];
         let mut block = DMatrix::<f64>::zeros(3 * n, 3 * n);
