@@ -115,8 +115,8 @@ fn curve(spec: &Option<CurveSpec>, key: &str) -> Result<Option<Curve>, SceneErro
 
 /// The solver's obstacle number `index` (its shape checked when the simulation is built).
 fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
-    let (shape, translate, points) = match spec {
-        &ObstacleSpec::HalfSpace {
+    let (shape, translate, points) = match *spec {
+        ObstacleSpec::HalfSpace {
             point,
             normal,
             translate,
@@ -129,7 +129,7 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
             translate,
             curve,
         ),
-        &ObstacleSpec::Sphere {
+        ObstacleSpec::Sphere {
             center,
             radius,
             translate,
@@ -142,7 +142,7 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
             translate,
             curve,
         ),
-        &ObstacleSpec::Cylinder {
+        ObstacleSpec::Cylinder {
             point,
             axis,
             radius,
