@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! isochor list                                   # built-in scenes, one per line
-//! isochor run SCENE [--set KEY=VALUE]... [--out DIR] [--json] [--variant NAME]
+//! isochor run SCENE [--set KEY=VALUE]... [--out DIR [--checkpoint-every N]] [--json] [--variant NAME]
+//! isochor resume DIR [--json]                    # continue an interrupted checkpointed run
 //! isochor compare SCENE --methods A,B,... [--set KEY=VALUE]... [--sweep KEY=V1,V2,...] [--out DIR] [--json]
 //! isochor show SCENE [--set KEY=VALUE]... [--variant NAME]   # the scene as TOML, to copy and edit
 //! isochor study SCENE --methods A,B,... [--elements tet4,tet10] [--sweep res=1,2,4,8] [--probe NAME]
@@ -17,7 +18,7 @@
 use crate::compare::{compare, describe_output, parse_methods, CompareRequest};
 use crate::overrides::Override;
 use crate::study::{parse_elements, study, ReferenceSpec, StudyRequest};
-use crate::{builtin, run_named, RunResult, SceneError, SceneSource};
+use crate::{builtin, resume_run, run_named, RunResult, SceneError, SceneSource};
 use clap::{Parser, Subcommand};
 use std::io::Write;
 use std::path::PathBuf;
@@ -56,6 +57,19 @@ pub enum Command {
         /// Write VTU frames, a .pvd, summary.json, CSV logs and PNG plots to this folder.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Print exactly one JSON object on stdout.
+        #[arg(long)]
+        json: bool,
+        /// Keep a restartable checkpoint in the output folder every N accepted steps (and at
+        /// the end); `isochor resume DIR` continues an interrupted run from it.
+        #[arg(long, value_name = "N", requires = "out")]
+        checkpoint_every: Option<usize>,
+    },
+    /// Continue a run started with --checkpoint-every that was interrupted; the results equal
+    /// the uninterrupted run's.
+    Resume {
+        /// The run's output folder (its --out).
+        dir: PathBuf,
         /// Print exactly one JSON object on stdout.
         #[arg(long)]
         json: bool,
@@ -177,6 +191,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             variant,
             out,
             json,
+            checkpoint_every,
         } => {
             let overrides = parse_overrides(&set)?;
             let (result, written) = run_named(
@@ -185,22 +200,13 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
                 &overrides,
                 out.as_deref(),
                 !json,
+                checkpoint_every,
             )?;
-            if json {
-                let text = serde_json::to_string(&result.to_json())
-                    .map_err(|e| SceneError::Output(e.to_string()))?;
-                writeln!(stdout, "{text}").map_err(io)?;
-            } else {
-                write!(stdout, "{}", human_summary(&result)).map_err(io)?;
-                if let Some(dir) = written {
-                    writeln!(stdout, "outputs: {}", dir.display()).map_err(io)?;
-                }
-            }
-            Ok(if result.converged {
-                0
-            } else {
-                EXIT_NOT_CONVERGED
-            })
+            report_run(&result, written, json, stdout)
+        }
+        Command::Resume { dir, json } => {
+            let (result, written) = resume_run(&dir, !json)?;
+            report_run(&result, written, json, stdout)
         }
         Command::Study {
             scene,
@@ -302,6 +308,31 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             Ok(0)
         }
     }
+}
+
+/// Prints a run's result (JSON or the summary for people); returns the exit status.
+fn report_run(
+    result: &RunResult,
+    written: Option<PathBuf>,
+    json: bool,
+    stdout: &mut dyn Write,
+) -> Result<i32, SceneError> {
+    let io = SceneError::Stdout;
+    if json {
+        let text = serde_json::to_string(&result.to_json())
+            .map_err(|e| SceneError::Output(e.to_string()))?;
+        writeln!(stdout, "{text}").map_err(io)?;
+    } else {
+        write!(stdout, "{}", human_summary(result)).map_err(io)?;
+        if let Some(dir) = written {
+            writeln!(stdout, "outputs: {}", dir.display()).map_err(io)?;
+        }
+    }
+    Ok(if result.converged {
+        0
+    } else {
+        EXIT_NOT_CONVERGED
+    })
 }
 
 /// A run's summary for people.

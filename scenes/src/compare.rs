@@ -146,6 +146,7 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
                 .iter()
                 .map(|o| format!("{}={}", o.key, o.display_value()))
                 .collect(),
+            checkpoint_every: None,
         };
         let result = run_scene(&scene, &options)
             .map(|(r, _)| r)

@@ -4,12 +4,13 @@
 //! ([`overrides`]), the built-in scene library ([`builtin`], reproducing the experiments of
 //! Francu et al. 2021 and Sheen et al. 2021), problem construction ([`problem`]), probes
 //! ([`probes`]), output writers ([`output`]: VTU frames, `summary.json`, CSV logs, PNG plots),
-//! method comparisons ([`compare`]) and the `isochor` command-line program ([`cli`]).
+//! checkpoints of long runs ([`checkpoint`]), method comparisons ([`compare`]) and the `isochor` command-line program ([`cli`]).
 //!
 //! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
 //! [`RunResult`].
 
 pub mod builtin;
+pub mod checkpoint;
 pub mod cli;
 pub mod compare;
 mod error;
@@ -28,5 +29,5 @@ pub use error::SceneError;
 pub use load::{load_scene, SceneSource};
 pub use overrides::Override;
 pub use result::{ContactRecord, RunResult, StepRecord};
-pub use run::{run_named, run_scene, RunOptions};
+pub use run::{resume_run, run_named, run_scene, RunOptions};
 pub use scene::Scene;

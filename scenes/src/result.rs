@@ -1,11 +1,11 @@
 //! The result of one run, as `--json` prints it and `summary.json` stores it. The keys of
 //! docs/contracts.md are fields of [`RunResult`]; everything else is extra.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// One accepted step or frame.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StepRecord {
     /// Step or frame index, from 1.
     pub step: usize,
@@ -46,7 +46,7 @@ pub struct StepRecord {
 }
 
 /// An attempted step that failed and was cut.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CutRecord {
     /// The load parameter or time it aimed at.
     pub t: f64,
@@ -61,7 +61,7 @@ pub struct CutRecord {
 }
 
 /// The contact of one accepted step.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactRecord {
     /// Total normal force the obstacles exert on the body (N).
     pub force: [f64; 3],

@@ -2,6 +2,7 @@
 //! step, evaluate the probes and write the outputs. The only module that touches the solver's
 //! stepping API.
 
+use crate::checkpoint::RunCheckpoint;
 use crate::output::{write_run_outputs, FrameWriter, OutputDir};
 use crate::probes::{self, ProbeInput};
 use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
@@ -24,16 +25,62 @@ pub struct RunOptions {
     pub variant: Option<String>,
     /// The overrides applied, recorded in the result as `KEY=VALUE`.
     pub overrides: Vec<String>,
+    /// Write a checkpoint into the output folder every this many accepted steps (and at the
+    /// end), so that an interrupted run can be resumed (needs `out`).
+    pub checkpoint_every: Option<usize>,
 }
 
 /// Runs a scene. A solver failure is not an error: the result says `converged: false` with
 /// the error and the failed step, and the outputs hold every accepted step. Errors are for
-/// scenes that cannot be built and outputs that cannot be written; they leave no output.
+/// scenes that cannot be built and outputs that cannot be written; they leave no output
+/// (but a checkpointed run keeps its unfinished folder, to be resumed).
 pub fn run_scene(
     scene: &Scene,
     options: &RunOptions,
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
+    if options.checkpoint_every.is_some() && options.out.is_none() {
+        return Err(SceneError::Output(
+            "--checkpoint-every needs --out DIR (the checkpoint is kept there)".into(),
+        ));
+    }
+    if options.checkpoint_every == Some(0) {
+        return Err(SceneError::Output(
+            "--checkpoint-every must be at least 1".into(),
+        ));
+    }
     let out = options.out.as_deref().map(OutputDir::create).transpose()?;
+    execute(scene, options, out, None)
+}
+
+/// Continues the interrupted run whose output folder is `dir` (`isochor resume DIR`) from its
+/// last checkpoint; the results equal the uninterrupted run's bit for bit.
+pub fn resume_run(dir: &Path, progress: bool) -> Result<(RunResult, Option<PathBuf>), SceneError> {
+    let out = OutputDir::reopen(dir)?;
+    let checkpoint = RunCheckpoint::read(out.path())?;
+    if checkpoint.finished {
+        return Err(SceneError::Output(format!(
+            "the run in {} has already finished",
+            dir.display()
+        )));
+    }
+    let options = RunOptions {
+        out: Some(dir.to_path_buf()),
+        progress,
+        variant: checkpoint.variant.clone(),
+        overrides: checkpoint.overrides.clone(),
+        checkpoint_every: Some(checkpoint.every),
+    };
+    let scene = checkpoint.scene.clone();
+    execute(&scene, &options, Some(out), Some(checkpoint))
+}
+
+/// Runs `scene` into `out`, from the start or from `resume`.
+fn execute(
+    scene: &Scene,
+    options: &RunOptions,
+    out: Option<OutputDir>,
+    resume: Option<RunCheckpoint>,
+) -> Result<(RunResult, Option<PathBuf>), SceneError> {
     let built = problem::build(scene)?;
     let mesh = built.problem.mesh.clone();
     let material = built.problem.material;
@@ -58,6 +105,7 @@ pub fn run_scene(
     )?;
 
     let total = scene.num_steps();
+    let stepping = built.stepping;
     let mut sim = Simulation::new(built.problem, built.settings)?;
     let dofs = sim.num_dofs();
     let mut frames = match (&out, scene.output.vtu) {
@@ -68,14 +116,23 @@ pub fn run_scene(
         }
         _ => None,
     };
-    let bar = progress_bar(options.progress, total, &scene.name);
-
     let mut history: Vec<StepRecord> = Vec::with_capacity(total);
+    let mut earlier_wall_time = 0.0;
+    if let Some(checkpoint) = resume {
+        sim.restore((&checkpoint.solver).into())?;
+        history = checkpoint.history;
+        earlier_wall_time = checkpoint.wall_time_s;
+        if let Some(w) = frames.as_mut() {
+            w.continue_after(checkpoint.frames);
+        }
+    }
+    let bar = progress_bar(options.progress, total, &scene.name);
     let mut last_pressures: Vec<f64> = Vec::new();
     let mut last_energies = Energies::default();
     let mut write_error: Option<SceneError> = None;
+    let mut last_solver = None;
     let start = Instant::now();
-    let outcome = sim.run(built.stepping, |frame: &Frame<'_>| {
+    let outcome = sim.run(stepping, |frame: &Frame<'_>| {
         let mut step = record(
             &mesh,
             frame.state,
@@ -87,7 +144,10 @@ pub fn run_scene(
         history.push(step);
         last_pressures.clone_from(&frame.tet_pressures);
         last_energies = frame.energies;
-        if let (Some(w), None) = (frames.as_mut(), write_error.as_ref()) {
+        if write_error.is_some() {
+            return;
+        }
+        if let Some(w) = frames.as_mut() {
             if let Some(index) = frame.frame.filter(|&k| w.wants(k, total)) {
                 let x = &frame.state.positions;
                 let p = &frame.tet_pressures;
@@ -96,6 +156,26 @@ pub fn run_scene(
                     write_error = Some(e);
                 }
             }
+        }
+        if let (Some(every), Some(dir)) = (options.checkpoint_every, out.as_ref()) {
+            if frame.progress.steps % every == 0 {
+                let checkpoint = RunCheckpoint::new(
+                    scene,
+                    options,
+                    false,
+                    &frame.checkpoint(),
+                    history.clone(),
+                    frames
+                        .as_ref()
+                        .map(|w| w.entries().to_vec())
+                        .unwrap_or_default(),
+                    earlier_wall_time + start.elapsed().as_secs_f64(),
+                );
+                if let Err(e) = checkpoint.write(dir.path()) {
+                    write_error = Some(e);
+                }
+            }
+            last_solver = Some(frame.checkpoint());
         }
         bar.set_position(frame.progress.levels as u64);
         bar.set_message(format!(
@@ -109,10 +189,9 @@ pub fn run_scene(
         return Err(e);
     }
 
-    let (final_state, reports, wall_time, max_inverted, error, failed_step): (
+    let (final_state, reports, max_inverted, error, failed_step): (
         State,
         Vec<StepReport>,
-        _,
         _,
         _,
         _,
@@ -120,23 +199,24 @@ pub fn run_scene(
         Ok(summary) => (
             summary.final_state,
             summary.reports,
-            summary.wall_time,
             summary.max_inverted_tets,
             None,
             None,
         ),
-        Err(failure) => {
-            let max_inverted = history.iter().map(|s| s.inverted_tets).max().unwrap_or(0);
-            (
-                failure.last_state,
-                failure.reports,
-                elapsed,
-                max_inverted,
-                Some(failure.error.to_string()),
-                Some(failure.failed_step),
-            )
-        }
+        Err(failure) => (
+            failure.last_state,
+            failure.reports,
+            0,
+            Some(failure.error.to_string()),
+            Some(failure.failed_step),
+        ),
     };
+    let max_inverted = history
+        .iter()
+        .map(|s| s.inverted_tets)
+        .max()
+        .unwrap_or(0)
+        .max(max_inverted);
     let failed = failed_step.and(reports.last()).map(|report| {
         let inverted = history.last().map_or(0, |s| s.inverted_tets);
         record(&mesh, &final_state, report, inverted, last_energies)
@@ -160,6 +240,15 @@ pub fn run_scene(
         }
         Err(e) => return Err(e),
     };
+    // Iterations of every attempt: the accepted steps', their cut attempts', the failed one's.
+    let attempts = |s: &StepRecord| {
+        s.newton_iterations
+            + s.cuts
+                .iter()
+                .map(|c| c.force_residuals.len() - 1)
+                .sum::<usize>()
+    };
+    let cuts = history.iter().map(|s| s.cuts.len()).sum();
     let result = RunResult {
         scene: scene.name.clone(),
         variant: options.variant.clone(),
@@ -172,14 +261,10 @@ pub fn run_scene(
         dofs,
         steps: history.len(),
         steps_requested: total,
-        newton_iterations: reports.iter().map(|r| r.newton_iterations()).sum(),
-        converged: error.is_none()
-            && reports
-                .iter()
-                .filter(|r| r.failure.is_none())
-                .all(|r| r.converged),
-        cuts: reports.iter().filter(|r| r.failure.is_some()).count() - usize::from(error.is_some()),
-        wall_time_s: wall_time.as_secs_f64(),
+        newton_iterations: history.iter().chain(&failed).map(attempts).sum(),
+        converged: error.is_none() && history.iter().all(|r| r.converged),
+        cuts,
+        wall_time_s: earlier_wall_time + elapsed.as_secs_f64(),
         volume_change: mesh.total_volume_at(&final_state.positions) / mesh.rest_volume() - 1.0,
         probes,
         max_inverted_tets: max_inverted,
@@ -195,6 +280,21 @@ pub fn run_scene(
         Some(dir) => {
             if let Some(w) = &frames {
                 w.finish()?;
+            }
+            if let Some(solver) = &last_solver {
+                RunCheckpoint::new(
+                    scene,
+                    options,
+                    result.error.is_none(),
+                    solver,
+                    result.history.clone(),
+                    frames
+                        .as_ref()
+                        .map(|w| w.entries().to_vec())
+                        .unwrap_or_default(),
+                    result.wall_time_s,
+                )
+                .write(dir.path())?;
             }
             write_run_outputs(dir.path(), &result, scene.output.plots)?;
             Some(dir.commit()?)
@@ -287,6 +387,7 @@ pub fn run_named(
     overrides: &[crate::Override],
     out: Option<&Path>,
     progress: bool,
+    checkpoint_every: Option<usize>,
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
     let scene = crate::load_scene(spec, variant, overrides)?;
     run_scene(
@@ -299,6 +400,7 @@ pub fn run_named(
                 .iter()
                 .map(|o| format!("{}={}", o.key, o.display_value()))
                 .collect(),
+            checkpoint_every,
         },
     )
 }

@@ -433,6 +433,7 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
                 .iter()
                 .map(|o| format!("{}={}", o.key, o.display_value()))
                 .collect(),
+            checkpoint_every: None,
         };
         let result = run_scene(&scene, &options)
             .map(|(r, _)| r)

@@ -347,3 +347,86 @@ fn a_failed_run_logs_the_failed_step() {
     assert_eq!(rows[2][7], "", "{log}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A run with `--checkpoint-every` killed part way leaves its unfinished folder with a
+/// checkpoint; `isochor resume DIR` finishes it with the uninterrupted run's results, bit for
+/// bit (the final states of the two checkpoints are equal), and refuses to resume it twice.
+#[test]
+fn a_killed_run_resumes_to_the_uninterrupted_result() {
+    let dir = scratch("resume");
+    let run_args = |out: &Path| -> Vec<String> {
+        [
+            "run",
+            "dynamic-cube",
+            "--set",
+            "res=5",
+            "--set",
+            "frames=120",
+            "--checkpoint-every",
+            "3",
+            "--json",
+            "--out",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([out.to_str().unwrap().to_string()])
+        .collect()
+    };
+    let whole = dir.join("whole");
+    let args = run_args(&whole);
+    let o = isochor(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let uninterrupted: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+
+    let cut = dir.join("cut");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_isochor"))
+        .args(run_args(&cut))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let checkpoint = dir.join(".cut.tmp").join("checkpoint.toml");
+    let start = std::time::Instant::now();
+    while !checkpoint.exists() && start.elapsed().as_secs() < 120 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(
+        !cut.exists(),
+        "the run finished before it could be killed: make it longer"
+    );
+    let o = isochor(&["resume", cut.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let resumed: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    for key in [
+        "steps",
+        "newton_iterations",
+        "volume_change",
+        "probes",
+        "converged",
+    ] {
+        assert_eq!(resumed[key], uninterrupted[key], "{key}");
+    }
+    let solver = |d: &Path| {
+        let text = std::fs::read_to_string(d.join("checkpoint.toml")).unwrap();
+        text.parse::<toml::Table>().unwrap()["solver"].clone()
+    };
+    assert!(solver(&cut) == solver(&whole), "the final states differ");
+    assert!(!dir.join(".cut.tmp").exists());
+
+    let again = isochor(&["resume", cut.to_str().unwrap()]);
+    assert_eq!(again.status.code(), Some(1));
+    assert!(
+        stderr(&again).contains("already finished"),
+        "{}",
+        stderr(&again)
+    );
+    let none = isochor(&["resume", dir.join("nothing").to_str().unwrap()]);
+    assert!(
+        stderr(&none).contains("no interrupted run"),
+        "{}",
+        stderr(&none)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

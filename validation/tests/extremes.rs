@@ -180,6 +180,7 @@ fn young_modulus_from_1e2_to_1e9() {
                 format!("method={m}"),
                 format!("E={e}"),
                 "res=2".into(),
+                "steps=10".into(),
                 "increments=fixed".into(),
             ];
             let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
@@ -287,6 +288,7 @@ fn compression_to_zero_volume_and_through_it() {
             "res=4".into(),
             "loads.traction.0.traction=[0.0, 0.0, -150e3]".into(),
             "probes.min_volume_ratio.kind=min-volume-ratio".into(),
+            "steps=10".into(),
             "increments=fixed".into(),
         ];
         let sets: Vec<&str> = sets.iter().map(String::as_str).collect();

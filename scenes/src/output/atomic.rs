@@ -1,13 +1,16 @@
 //! An output folder that appears whole or not at all.
 
+use crate::checkpoint::CHECKPOINT_FILE;
 use crate::SceneError;
 use std::path::{Path, PathBuf};
 
 /// Files that mark a folder as an isochor output folder (so it may be replaced).
 const MARKERS: [&str; 3] = ["summary.json", "compare.csv", "study.csv"];
 
-/// A temporary folder `.NAME.tmp-PID` next to the destination; [`OutputDir::commit`] renames
-/// it to the destination, and dropping it uncommitted removes it.
+/// A temporary folder `.NAME.tmp` next to the destination; [`OutputDir::commit`] renames it
+/// to the destination, and dropping it uncommitted removes it, unless it holds a checkpoint
+/// (then `isochor resume` continues the run in it). A run killed before either leaves the
+/// folder behind; the next run into the same destination removes it.
 #[derive(Debug)]
 pub struct OutputDir {
     temp: PathBuf,
@@ -20,21 +23,35 @@ impl OutputDir {
     /// file, or an existing non-empty folder that is not an earlier isochor output.
     pub fn create(dest: &Path) -> Result<OutputDir, SceneError> {
         check_replaceable(dest)?;
-        let name = dest
-            .file_name()
-            .ok_or_else(|| SceneError::Output(format!("{} is not a folder name", dest.display())))?
-            .to_string_lossy()
-            .into_owned();
-        let parent = match dest.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        std::fs::create_dir_all(&parent).map_err(|e| SceneError::io(&parent, e))?;
-        let temp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+        let temp = temporary(dest)?;
+        if let Some(parent) = temp.parent() {
+            std::fs::create_dir_all(parent).map_err(|e| SceneError::io(parent, e))?;
+        }
         if temp.exists() {
             std::fs::remove_dir_all(&temp).map_err(|e| SceneError::io(&temp, e))?;
         }
         std::fs::create_dir(&temp).map_err(|e| SceneError::io(&temp, e))?;
+        Ok(OutputDir {
+            temp,
+            dest: dest.to_path_buf(),
+            committed: false,
+        })
+    }
+
+    /// The unfinished output folder of an interrupted run into `dest`, as it was left.
+    pub fn reopen(dest: &Path) -> Result<OutputDir, SceneError> {
+        let temp = temporary(dest)?;
+        if !temp.join(CHECKPOINT_FILE).is_file() {
+            let finished = dest.join(CHECKPOINT_FILE).is_file();
+            return Err(SceneError::Output(if finished {
+                format!("the run in {} has already finished", dest.display())
+            } else {
+                format!(
+                    "no interrupted run to resume in {} (a run keeps one only with --checkpoint-every)",
+                    dest.display()
+                )
+            }));
+        }
         Ok(OutputDir {
             temp,
             dest: dest.to_path_buf(),
@@ -70,10 +87,24 @@ impl OutputDir {
 
 impl Drop for OutputDir {
     fn drop(&mut self) {
-        if !self.committed {
+        if !self.committed && !self.temp.join(CHECKPOINT_FILE).is_file() {
             let _ = std::fs::remove_dir_all(&self.temp);
         }
     }
+}
+
+/// The hidden folder `.NAME.tmp` next to `dest` that a run writes into.
+fn temporary(dest: &Path) -> Result<PathBuf, SceneError> {
+    let name = dest
+        .file_name()
+        .ok_or_else(|| SceneError::Output(format!("{} is not a folder name", dest.display())))?
+        .to_string_lossy()
+        .into_owned();
+    let parent = match dest.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    Ok(parent.join(format!(".{name}.tmp")))
 }
 
 fn check_replaceable(dest: &Path) -> Result<(), SceneError> {

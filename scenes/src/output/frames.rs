@@ -80,6 +80,16 @@ impl FrameWriter {
         Ok(())
     }
 
+    /// The frames written so far: time or load parameter, file name.
+    pub fn entries(&self) -> &[(f64, String)] {
+        &self.entries
+    }
+
+    /// Continues a resumed run whose frames so far are `entries` (later files are rewritten).
+    pub fn continue_after(&mut self, entries: Vec<(f64, String)>) {
+        self.entries = entries;
+    }
+
     /// Writes the `.pvd` collection of the frames written so far.
     pub fn finish(&self) -> Result<(), SceneError> {
         write_pvd(self.dir.join(format!("{}.pvd", self.stem)), &self.entries)?;

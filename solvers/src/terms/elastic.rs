@@ -129,7 +129,10 @@ impl EnergyTerm for Elastic {
                 0
             }
         ];
-        let energy = match hessian {
+        // Per-element energies summed in element order: a parallel reduction would sum in an
+        // order that depends on scheduling, and resumed runs must equal uninterrupted ones bit
+        // for bit.
+        let energies: Vec<f64> = match hessian {
             Some(out) => out
                 .par_chunks_mut(dim * dim)
                 .zip(local.par_chunks_mut(dim))
@@ -142,17 +145,18 @@ impl EnergyTerm for Elastic {
                     }
                     Ok(energy)
                 })
-                .sum::<Result<f64, SolverError>>()?,
+                .collect::<Result<_, SolverError>>()?,
             None if derivatives => local
                 .par_chunks_mut(dim)
                 .enumerate()
                 .map(|(e, g)| self.element(e, x, Some(g), None))
-                .sum::<Result<f64, SolverError>>()?,
+                .collect::<Result<_, SolverError>>()?,
             None => (0..self.num_elements())
                 .into_par_iter()
                 .map(|e| self.element(e, x, None, None))
-                .sum::<Result<f64, SolverError>>()?,
+                .collect::<Result<_, SolverError>>()?,
         };
+        let energy = energies.iter().sum();
         if let Some(g) = gradient {
             for (e, l) in local.chunks_exact(dim).enumerate() {
                 scatter(self.nodes(e), l, g);

@@ -74,7 +74,9 @@ impl EnergyTerm for EpidermisTerm {
         let face = |f: usize| self.faces.face(f);
         let derivatives = gradient.is_some() || hessian.is_some();
         let mut local = vec![0.0; if derivatives { 3 * n * count } else { 0 }];
-        let energy = match hessian {
+        // Per-face energies summed in face order: a parallel reduction would sum in an order
+        // that depends on scheduling, and resumed runs must equal uninterrupted ones bit for bit.
+        let energies: Vec<f64> = match hessian {
             Some(out) => out
                 .par_chunks_mut(9 * n * n)
                 .zip(local.par_chunks_mut(3 * n))
@@ -83,17 +85,18 @@ impl EnergyTerm for EpidermisTerm {
                     self.skin
                         .evaluate(x, face(f), self.rest(f), Some(g), Some(h))
                 })
-                .sum(),
+                .collect(),
             None if derivatives => local
                 .par_chunks_mut(3 * n)
                 .enumerate()
                 .map(|(f, g)| self.skin.evaluate(x, face(f), self.rest(f), Some(g), None))
-                .sum(),
+                .collect(),
             None => (0..count)
                 .into_par_iter()
                 .map(|f| self.skin.evaluate(x, face(f), self.rest(f), None, None))
-                .sum(),
+                .collect(),
         };
+        let energy = energies.iter().sum();
         if let Some(g) = gradient {
             for (f, l) in local.chunks_exact(3 * n).enumerate() {
                 scatter(face(f), l, g);

@@ -1,0 +1,192 @@
+//! Load stepping that adapts and runs that survive: adaptive quasi-static increments, time
+//! steps retried in substeps, load curves, and checkpoints that resume a run bit for bit.
+//! Iteration counts are printed (`-- --nocapture`).
+
+mod common;
+
+use common::{assert_converged, probe, run};
+use isochor_scenes::{load_scene, problem, Override};
+use isochor_solvers::{Checkpoint, Method, Simulation, State};
+
+fn built(scene: &str, sets: &[&str]) -> problem::Built {
+    let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+    problem::build(&load_scene(scene, None, &overrides).unwrap()).unwrap()
+}
+
+/// The cantilever at its default settings takes the full load in one step with every method,
+/// and gives the deflection of ten fixed steps to the solver's tolerance.
+#[test]
+fn the_cantilever_takes_its_load_in_one_step_with_every_method() {
+    for method in Method::ALL {
+        let m = format!("method={method}");
+        let one = run("cantilever", None, &[&m, "res=2"]);
+        assert_converged(&one, &format!("cantilever {method}, adaptive"));
+        let ten = run(
+            "cantilever",
+            None,
+            &[&m, "res=2", "steps=10", "increments=fixed"],
+        );
+        assert_converged(&ten, &format!("cantilever {method}, 10 fixed steps"));
+        let (a, b) = (probe(&one, "tip_deflection"), probe(&ten, "tip_deflection"));
+        eprintln!(
+            "{method:<13} one step: {} Newton iterations, {} cuts, tip {a:.9e}; ten steps: {} iterations, tip {b:.9e}",
+            one.newton_iterations, one.cuts, ten.newton_iterations
+        );
+        assert_eq!((one.steps, one.cuts), (1, 0), "{method}");
+        assert!((a - b).abs() <= 1e-6 * b.abs(), "{method}: {a} vs {b}");
+    }
+}
+
+/// A soft cantilever (E = 1 kPa) that no Newton iteration reaches from the straight beam in
+/// one step: fixed stepping stops at step 1, adaptive stepping cuts the increment, converges,
+/// and records its cuts.
+#[test]
+fn a_load_too_large_for_one_step_is_cut_until_it_converges() {
+    let fixed = run("cantilever", None, &["E=1e3", "res=2", "increments=fixed"]);
+    assert!(
+        !fixed.converged && fixed.failed_step == Some(1),
+        "{fixed:?}"
+    );
+    let r = run("cantilever", None, &["E=1e3", "res=2"]);
+    assert_converged(&r, "soft cantilever, adaptive");
+    let levels: Vec<(f64, f64, usize)> = r
+        .history
+        .iter()
+        .map(|s| (s.t, s.increment, s.cuts.len()))
+        .collect();
+    eprintln!(
+        "soft cantilever: {} steps, {} cuts, {} Newton iterations; (t, increment, cuts) {levels:?}",
+        r.steps, r.cuts, r.newton_iterations
+    );
+    assert!(r.cuts >= 1 && r.cuts == levels.iter().map(|l| l.2).sum::<usize>());
+    assert_eq!(r.history.last().unwrap().t, 1.0);
+    assert!(levels.windows(2).all(|w| w[1].0 > w[0].0));
+    assert!(r.history[0].cuts.iter().all(|c| !c.error.is_empty()));
+    assert!(probe(&r, "tip_deflection") > 0.1);
+}
+
+/// A prescribed motion that flattens a tet to zero volume cannot be reached by the standard
+/// energy with any increment: the run ends with the typed error after the smallest increment
+/// and keeps its last converged state.
+#[test]
+fn an_unreachable_load_ends_with_a_typed_error_keeping_the_last_state() {
+    let r = run(
+        "two-tets",
+        None,
+        &[
+            "method=standard",
+            "steps=1",
+            "dirichlet.0.motion.scale.factors=[0.0, 1.0, 1.0]",
+        ],
+    );
+    let error = r.error.clone().unwrap_or_default();
+    eprintln!("{} steps, {} cuts: {error}", r.steps, r.cuts);
+    assert!(
+        !r.converged && error.contains("even with an increment"),
+        "{error}"
+    );
+    assert!(r.steps >= 1 && r.failed_step == Some(r.steps + 1));
+    assert!(r.cuts >= 9);
+    let ratio = probe(&r, "total_volume_ratio");
+    assert!(ratio.is_finite() && ratio > 0.5 && ratio < 0.51, "{ratio}");
+}
+
+/// A chamber inflated to the full pressure at half the run and deflated by its end: at half
+/// the run it has the volume of the plain inflation, at the end it is back at rest (the
+/// volume to a few times the constraint tolerance, 1e-10 per node).
+#[test]
+fn a_chamber_inflated_and_deflated_returns_to_rest() {
+    let plain = run("inflated-tube", None, &["res=1"]);
+    assert_converged(&plain, "inflated tube");
+    let r = run(
+        "inflated-tube",
+        None,
+        &[
+            "res=1",
+            "steps=2",
+            "loads.pressure.0.curve=[[0.0, 0.0], [0.5, 1.0], [1.0, 0.0]]",
+        ],
+    );
+    assert_converged(&r, "inflated and deflated tube");
+    let half = r
+        .history
+        .iter()
+        .find(|s| s.t == 0.5)
+        .expect("a frame at 0.5");
+    eprintln!(
+        "volume change: plain {:e}, at half {:e}, at the end {:e}; radius increase at the end {:e}",
+        plain.volume_change,
+        half.volume_change,
+        r.volume_change,
+        probe(&r, "mean_radius_increase")
+    );
+    assert!((half.volume_change - plain.volume_change).abs() <= 1e-6 * plain.volume_change);
+    assert!(r.volume_change.abs() <= 1e-9, "{}", r.volume_change);
+    assert!(
+        probe(&r, "mean_radius_increase").abs() <= 1e-9 * probe(&plain, "mean_radius_increase")
+    );
+}
+
+/// Time steps too large for a three-iteration Newton limit are retried in substeps; the
+/// frames stay at multiples of `dt`.
+#[test]
+fn failed_time_steps_are_retried_in_substeps_keeping_the_frames() {
+    let r = run(
+        "dynamic-cube",
+        None,
+        &["res=3", "frames=4", "dt=0.2", "max_iterations=3"],
+    );
+    assert_converged(&r, "dynamic cube with substeps");
+    let times: Vec<f64> = r.history.iter().map(|s| s.t).collect();
+    eprintln!("{} steps, {} cuts: times {times:?}", r.steps, r.cuts);
+    assert!(r.cuts >= 1 && r.steps > 4);
+    for k in 1..=4 {
+        assert!(
+            times.contains(&(k as f64 * 0.2)),
+            "no frame at {}",
+            k as f64 * 0.2
+        );
+    }
+    let total: f64 = r.history.iter().map(|s| s.increment).sum();
+    assert!((total - 0.8).abs() < 1e-12, "{total}");
+}
+
+/// Runs `built` to the end, taking a checkpoint after accepted step `at`; returns the final
+/// state and the checkpoint.
+fn run_with_checkpoint(built: problem::Built, at: usize) -> (State, Checkpoint) {
+    let mut sim = Simulation::new(built.problem, built.settings).unwrap();
+    let mut taken = None;
+    let summary = sim
+        .run(built.stepping, |frame| {
+            if frame.index == at {
+                taken = Some(frame.checkpoint());
+            }
+        })
+        .unwrap();
+    (
+        summary.final_state,
+        taken.expect("the checkpoint step was reached"),
+    )
+}
+
+/// A run resumed from a checkpoint ends in the uninterrupted run's state, bit for bit: quasi-
+/// statically with contact (multipliers restored) and adaptive cuts, and in dynamics.
+#[test]
+fn a_resumed_run_equals_the_uninterrupted_one_bit_for_bit() {
+    for (scene, sets, at) in [
+        ("resting-block", vec!["res=2", "steps=4"], 2),
+        ("cantilever", vec!["E=1e3", "res=1"], 2),
+        ("dynamic-cube", vec!["res=3", "frames=6"], 3),
+    ] {
+        let (uninterrupted, checkpoint) = run_with_checkpoint(built(scene, &sets), at);
+        let b = built(scene, &sets);
+        let mut sim = Simulation::new(b.problem, b.settings).unwrap();
+        sim.restore(checkpoint).unwrap();
+        let resumed = sim.run(b.stepping, |_| {}).unwrap();
+        assert!(
+            resumed.final_state == uninterrupted,
+            "{scene}: the resumed run differs"
+        );
+        eprintln!("{scene}: resumed after step {at}, equal bit for bit");
+    }
+}
