@@ -30,7 +30,7 @@ pub use model::{
 };
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{
-    Adaptive, Attempt, Checkpoint, Energies, Frame, Linearizer, NewtonSystem, Progress, RunSummary,
+    Adaptive, Checkpoint, Energies, Frame, Linearizer, NewtonSystem, Progress, RunSummary,
     Simulation, SimulationFailure, State, StepControl, Stepping,
 };
 pub use simulation::{IterationReport, StepReport, Timings};

@@ -15,7 +15,7 @@ use crate::{LoadLevel, Method, Problem, Settings, SolverError};
 use faer::sparse::SparseColMat;
 pub use report::{IterationReport, StepReport, Timings};
 use stepper::Stepper;
-pub use stepper::{Adaptive, Attempt, Progress, StepControl};
+pub use stepper::{Adaptive, Progress, StepControl};
 
 use isochor_mesh::element::deformation_gradient;
 use isochor_mesh::{ElementMesh, Vec3};
