@@ -5,6 +5,7 @@ use isochor_mesh::generate::{box_grid, cylinder, cylinder_surface, tube_surface}
 use isochor_mesh::io::{
     read_gmsh, read_gmsh_elements, read_mesh, read_mesh_elements, read_tetgen, read_vtu,
     read_vtu_elements, read_vtu_file, write_pvd, write_vtu, write_vtu_elements, Field, FieldValues,
+    VtuEncoding,
 };
 use isochor_mesh::{ElementMesh, MeshError, Vec3};
 use std::f64::consts::PI;
@@ -79,6 +80,7 @@ fn vtu_round_trip_is_exact() {
         mesh.tets(),
         &point_data,
         &cell_data,
+        VtuEncoding::Ascii,
     )
     .unwrap();
     let file = read_vtu_file(&path).unwrap();
@@ -108,7 +110,8 @@ fn vtu_round_trip_is_exact() {
             mesh.positions(),
             mesh.tets(),
             &short,
-            &[]
+            &[],
+            VtuEncoding::Ascii,
         ),
         Err(MeshError::InvalidParameter { .. })
     ));
@@ -121,7 +124,15 @@ fn malformed_vtu_files_name_the_line() {
     let dir = scratch("vtu-bad");
     let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [1, 1, 1]).unwrap();
     let good = dir.join("good.vtu");
-    write_vtu(&good, mesh.positions(), mesh.tets(), &[], &[]).unwrap();
+    write_vtu(
+        &good,
+        mesh.positions(),
+        mesh.tets(),
+        &[],
+        &[],
+        VtuEncoding::Ascii,
+    )
+    .unwrap();
     let text = fs::read_to_string(&good).unwrap();
     let line_of = |needle: &str| text[..text.find(needle).unwrap()].matches('\n').count() + 1;
     let case = |name: &str, text: &str| {
@@ -158,6 +169,248 @@ fn malformed_vtu_files_name_the_line() {
         ),
     );
     assert!(m.contains("more cells"), "{m}");
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Point and cell data with values text and binary must both keep (signed zero, subnormals,
+/// extremes, infinities and `nan`) on a mesh of `points` points and `cells` cells.
+fn awkward_fields(points: &[Vec3], cells: usize, nan: f64) -> (Vec<Field>, Vec<Field>) {
+    let special = [-0.0, 5e-324, 1e-310, f64::MAX, f64::NEG_INFINITY, nan];
+    let value = |i: usize| {
+        special
+            .get(i % 40)
+            .copied()
+            .unwrap_or((i as f64).sqrt() * 1e-7 + 0.1 + 0.2)
+    };
+    let displacement = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Vec3::new(p.x * 1e-3, value(i), -1.0 / (i + 1) as f64))
+        .collect();
+    let point_data = vec![
+        Field::vector("displacement", displacement),
+        Field::scalar("p <kPa> & \"x\"", (0..points.len()).map(value).collect()),
+        Field::int(
+            "flag",
+            (0..points.len()).map(|i| i as i32 % 5 - 2).collect(),
+        ),
+    ];
+    let cell_data = vec![
+        Field::scalar("J", (0..cells).map(|e| 1.0 - value(e) * 1e-17).collect()),
+        Field::int("zone", (0..cells).map(|e| i32::MIN + e as i32).collect()),
+    ];
+    (point_data, cell_data)
+}
+
+/// The bits of every value of a field.
+fn bits(field: &Field) -> (String, Vec<u64>) {
+    let values = match &field.values {
+        FieldValues::Scalar(v) => v.iter().map(|x| x.to_bits()).collect(),
+        FieldValues::Vector(v) => v
+            .iter()
+            .flat_map(|x| [x.x, x.y, x.z])
+            .map(f64::to_bits)
+            .collect(),
+        FieldValues::Int(v) => v.iter().map(|&x| x as u64).collect(),
+    };
+    (field.name.clone(), values)
+}
+
+fn all_bits(fields: &[Field]) -> Vec<(String, Vec<u64>)> {
+    fields.iter().map(bits).collect()
+}
+
+#[test]
+fn vtu_round_trips_in_ascii_and_binary_of_4_and_10_node_meshes() {
+    let dir = scratch("vtu-encodings");
+    let r = 0.02;
+    // 2,197 points and 10,368 tets: arrays of several 32 KiB blocks.
+    let linear =
+        ElementMesh::linear(box_grid(Vec3::zeros(), Vec3::new(1.0, 0.5, 0.25), [12; 3]).unwrap());
+    let curved =
+        ElementMesh::quadratic_on_surface(cylinder(r, 0.05, 2).unwrap(), cylinder_surface(r))
+            .unwrap();
+    // Text keeps the canonical NaN; binary keeps any NaN payload.
+    let payload_nan = f64::from_bits(0x7ff8_dead_beef_0001);
+    for mesh in [&linear, &curved] {
+        let mut sizes = Vec::new();
+        for (encoding, nan) in [
+            (VtuEncoding::Ascii, f64::NAN),
+            (VtuEncoding::Binary, payload_nan),
+        ] {
+            let (point_data, cell_data) = awkward_fields(mesh.nodes(), mesh.num_elements(), nan);
+            let path = dir.join(format!("{:?}-{encoding:?}.vtu", mesh.kind()));
+            write_vtu_elements(
+                &path,
+                mesh.nodes(),
+                mesh.kind(),
+                mesh.connectivity(),
+                &point_data,
+                &cell_data,
+                encoding,
+            )
+            .unwrap();
+            let file = read_vtu_file(&path).unwrap();
+            let what = format!("{:?} {encoding:?}", mesh.kind());
+            assert_eq!(file.element, mesh.kind(), "{what}");
+            assert_eq!(file.points, mesh.nodes(), "{what}");
+            assert_eq!(file.cells, mesh.connectivity(), "{what}");
+            assert_eq!(all_bits(&file.point_data), all_bits(&point_data), "{what}");
+            assert_eq!(all_bits(&file.cell_data), all_bits(&cell_data), "{what}");
+            let back = read_vtu_elements(&path).unwrap();
+            assert_eq!(back.nodes(), mesh.nodes(), "{what}");
+            assert_eq!(back.connectivity(), mesh.connectivity(), "{what}");
+            let text = String::from_utf8_lossy(&fs::read(&path).unwrap()).into_owned();
+            let binary = encoding == VtuEncoding::Binary;
+            assert_eq!(text.contains(r#"format="appended""#), binary, "{what}");
+            assert_eq!(text.contains(r#"format="ascii""#), !binary, "{what}");
+            sizes.push(fs::metadata(&path).unwrap().len());
+        }
+        assert!(sizes[1] < sizes[0], "binary is smaller: {sizes:?}");
+    }
+    assert_eq!(
+        read_mesh(dir.join("Tet4-Binary.vtu"))
+            .unwrap()
+            .rest_volumes(),
+        linear.corners().rest_volumes()
+    );
+    // Atomic writes leave no temporary behind.
+    assert_eq!(fs::read_dir(&dir).unwrap().count(), 4);
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The same grid (10-node tets with point and cell data) written by VTK and meshio in other
+/// layouts (see scripts/make_vtu_fixtures.py) reads back bit for bit equal to the ASCII frame
+/// isochor wrote.
+#[test]
+fn vtu_layouts_of_vtk_and_meshio_read_alike() {
+    let original = read_vtu_file(data("vtu/isochor-ascii.vtu")).unwrap();
+    assert_eq!(original.element, TetElement::Tet10);
+    assert_eq!((original.points.len(), original.cells.len()), (81, 24 * 10));
+    let sorted = |fields: &[Field]| {
+        let mut b = all_bits(fields);
+        b.sort();
+        b
+    };
+    for name in [
+        "vtk-appended-zlib-uint64.vtu",
+        "vtk-appended-raw-uint32-big-endian.vtu",
+        "vtk-inline-zlib-uint32.vtu",
+        "meshio-inline-zlib-uint32.vtu",
+        "meshio-inline-raw-uint64.vtu",
+    ] {
+        let file = read_vtu_file(data(&format!("vtu/{name}"))).unwrap();
+        assert_eq!(file.element, original.element, "{name}");
+        assert_eq!(file.points, original.points, "{name}");
+        assert_eq!(file.cells, original.cells, "{name}");
+        assert_eq!(
+            sorted(&file.point_data),
+            sorted(&original.point_data),
+            "{name}"
+        );
+        assert_eq!(
+            sorted(&file.cell_data),
+            sorted(&original.cell_data),
+            "{name}"
+        );
+    }
+}
+
+/// The byte offset of the appended data (just after its `_`) in a binary VTU file.
+fn appended_start(bytes: &[u8]) -> usize {
+    let tag = b"<AppendedData encoding=\"raw\">";
+    let at = bytes.windows(tag.len()).position(|w| w == tag).unwrap();
+    at + bytes[at..].iter().position(|&b| b == b'_').unwrap() + 1
+}
+
+#[test]
+fn damaged_binary_vtu_files_are_errors_not_panics() {
+    let dir = scratch("vtu-binary-bad");
+    let mesh = ElementMesh::linear(box_grid(Vec3::zeros(), Vec3::repeat(1.0), [3, 3, 3]).unwrap());
+    let (point_data, cell_data) = awkward_fields(mesh.nodes(), mesh.num_elements(), f64::NAN);
+    let good = dir.join("good.vtu");
+    write_vtu_elements(
+        &good,
+        mesh.nodes(),
+        mesh.kind(),
+        mesh.connectivity(),
+        &point_data,
+        &cell_data,
+        VtuEncoding::Binary,
+    )
+    .unwrap();
+    let bytes = fs::read(&good).unwrap();
+    let start = appended_start(&bytes);
+    let tail = b"\n  </AppendedData>\n</VTKFile>\n";
+    assert!(bytes.ends_with(tail));
+    let end = bytes.len() - tail.len();
+    let read = |name: &str, bytes: &[u8]| {
+        let path = dir.join(name);
+        fs::write(&path, bytes).unwrap();
+        let result = read_vtu_file(&path);
+        (
+            parse_error(result, &path).1,
+            read_vtu_elements(&path).is_err(),
+        )
+    };
+    // Cut anywhere: in the XML, in the data, or in the closing tags (only the final newline
+    // may go).
+    for cut in (0..bytes.len() - 1).step_by(7) {
+        let (_, elements_too) = read("truncated.vtu", &bytes[..cut]);
+        assert!(elements_too, "cut at {cut}");
+    }
+    let (m, _) = read("truncated.vtu", &bytes[..end]);
+    assert!(m.contains("truncated"), "{m}");
+    // Data cut short with the closing tags kept.
+    for cut in start..end {
+        let damaged = [&bytes[..cut], &tail[..]].concat();
+        let (m, _) = read("short.vtu", &damaged);
+        assert!(m.contains("data array"), "cut at {cut}: {m}");
+    }
+    // The compression header of the first array ("displacement"): its words are the number of
+    // blocks, the block size, the last block's size and the compressed size of each block.
+    let with_word = |word: usize, value: u64| {
+        let mut b = bytes.clone();
+        b[start + 8 * word..start + 8 * word + 8].copy_from_slice(&value.to_le_bytes());
+        b
+    };
+    for (word, value, needle) in [
+        (0, u64::MAX, "blocks"),
+        (0, 1 << 40, "blocks"),
+        (0, 0, "expected"),
+        (1, 0, "last block"),
+        (2, 1 << 20, "last block"),
+        (3, u64::MAX, "past the end"),
+        (3, 1, "block 0"),
+    ] {
+        let (m, _) = read("header.vtu", &with_word(word, value));
+        assert!(
+            m.contains("\"displacement\"") && m.contains(needle),
+            "word {word} = {value}: {m}"
+        );
+    }
+    // A flipped byte in a zlib block, garbage data, an offset past the end.
+    let mut flipped = bytes.clone();
+    flipped[start + 40] ^= 0x55;
+    let (m, _) = read("flipped.vtu", &flipped);
+    assert!(m.contains("block 0"), "{m}");
+    let mut garbage = bytes.clone();
+    let mut state = 12345u64;
+    for b in &mut garbage[start..end] {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        *b = (state >> 56) as u8;
+    }
+    read("garbage.vtu", &garbage);
+    let text = String::from_utf8_lossy(&bytes[..start]).replacen(
+        r#"offset="0""#,
+        r#"offset="99999999""#,
+        1,
+    );
+    let moved = [text.as_bytes(), &bytes[start..]].concat();
+    let (m, _) = read("offset.vtu", &moved);
+    assert!(m.contains("past the end"), "{m}");
     fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -393,6 +646,7 @@ fn vtu_round_trip_of_curved_ten_node_tets() {
         mesh.connectivity(),
         &point_data,
         &cell_data,
+        VtuEncoding::Ascii,
     )
     .unwrap();
     let file = read_vtu_file(&path).unwrap();
@@ -425,6 +679,7 @@ fn vtu_round_trip_of_curved_ten_node_tets() {
         mesh.corners().tets(),
         &[],
         &[],
+        VtuEncoding::Ascii,
     )
     .unwrap();
     let back = read_mesh_elements(&linear).unwrap();

@@ -53,6 +53,7 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("every", "output.every"),
     ("vtu", "output.vtu"),
     ("plots", "output.plots"),
+    ("vtu_encoding", "output.vtu_encoding"),
 ];
 
 /// One `KEY=VALUE` override.

@@ -110,7 +110,9 @@ fn execute(
     let dofs = sim.num_dofs();
     let mut frames = match (&out, scene.output.vtu) {
         (Some(dir), true) => {
-            let mut w = FrameWriter::new(dir.path(), "frame", scene.output.every, zone_ids);
+            let encoding = scene.output.vtu_encoding.resolve(mesh.num_nodes());
+            let mut w =
+                FrameWriter::new(dir.path(), "frame", scene.output.every, encoding, zone_ids);
             w.write(&mesh, 0, 0.0, mesh.nodes(), &zeros, &[])?;
             Some(w)
         }

@@ -8,6 +8,7 @@
 
 use crate::SceneError;
 use isochor_mesh::element::TetElement;
+use isochor_mesh::io::VtuEncoding;
 use isochor_solvers::Method;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -621,6 +622,9 @@ pub struct OutputSpec {
     /// Write PNG plots.
     #[serde(default = "yes")]
     pub plots: bool,
+    /// How the VTU frames store their arrays.
+    #[serde(default)]
+    pub vtu_encoding: VtuEncodingName,
 }
 
 fn yes() -> bool {
@@ -633,6 +637,36 @@ impl Default for OutputSpec {
             every: 1,
             vtu: true,
             plots: true,
+            vtu_encoding: VtuEncodingName::Auto,
+        }
+    }
+}
+
+/// The `output.vtu_encoding` key.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VtuEncodingName {
+    /// Binary for meshes of at least [`VtuEncodingName::AUTO_BINARY_NODES`] nodes, ASCII below
+    /// (small outputs stay readable as text).
+    #[default]
+    Auto,
+    /// zlib-compressed appended binary.
+    Binary,
+    /// Text.
+    Ascii,
+}
+
+impl VtuEncodingName {
+    /// Nodes from which `auto` writes binary frames.
+    pub const AUTO_BINARY_NODES: usize = 10_000;
+
+    /// The encoding of the frames of a mesh of `nodes` nodes.
+    pub fn resolve(self, nodes: usize) -> VtuEncoding {
+        match self {
+            VtuEncodingName::Binary => VtuEncoding::Binary,
+            VtuEncodingName::Ascii => VtuEncoding::Ascii,
+            VtuEncodingName::Auto if nodes >= Self::AUTO_BINARY_NODES => VtuEncoding::Binary,
+            VtuEncodingName::Auto => VtuEncoding::Ascii,
         }
     }
 }
@@ -891,5 +925,19 @@ impl Scene {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn auto_encoding_is_binary_from_ten_thousand_nodes() {
+        let auto = VtuEncodingName::Auto;
+        assert_eq!(auto.resolve(9_999), VtuEncoding::Ascii);
+        assert_eq!(auto.resolve(10_000), VtuEncoding::Binary);
+        assert_eq!(VtuEncodingName::Ascii.resolve(1 << 20), VtuEncoding::Ascii);
+        assert_eq!(VtuEncodingName::Binary.resolve(4), VtuEncoding::Binary);
     }
 }

@@ -1,5 +1,6 @@
 //! The `isochor` binary end to end: the command-line contract of docs/contracts.md.
 
+use isochor_mesh::io::read_vtu_file;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -270,6 +271,40 @@ fn run_json_is_one_object_with_every_contract_key_and_out_writes_everything() {
     for key in CONTRACT_KEYS {
         assert!(summary.get(key).is_some(), "summary.json lacks {key}");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `vtu_encoding` chooses the frames' format (flat or dotted key); `auto` keeps small meshes
+/// in ASCII, and both formats hold the same data.
+#[test]
+fn vtu_encoding_chooses_ascii_or_binary_frames_with_the_same_data() {
+    let dir = scratch("encoding");
+    let frame = |name: &str, set: Option<&str>| {
+        let out = dir.join(name);
+        let mut args = vec!["run", "cantilever", "--set", "res=1", "--set", "steps=1"];
+        if let Some(s) = set {
+            args.extend(["--set", s]);
+        }
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = isochor(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let path = out.join("frame_00001.vtu");
+        let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
+        (read_vtu_file(&path).unwrap(), text)
+    };
+    let (auto, auto_text) = frame("auto", None);
+    let (ascii, ascii_text) = frame("ascii", Some("output.vtu_encoding=ascii"));
+    let (binary, binary_text) = frame("binary", Some("vtu_encoding=binary"));
+    assert!(auto_text.contains(r#"format="ascii""#));
+    assert!(!auto_text.contains(r#"format="appended""#));
+    assert!(ascii_text.contains(r#"format="ascii""#));
+    assert!(binary_text.contains(r#"compressor="vtkZLibDataCompressor""#));
+    assert!(!binary_text.contains(r#"format="ascii""#));
+    assert_eq!(auto, ascii);
+    assert_eq!(ascii, binary);
+    let o = isochor(&["show", "cantilever", "--set", "vtu_encoding=zip"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("output.vtu_encoding"), "{}", stderr(&o));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -6,6 +6,7 @@
 use isochor_mesh::{Vec3, Zones};
 use isochor_scenes::overrides::FLAT_KEYS;
 use isochor_scenes::problem::{build, Built};
+use isochor_scenes::scene::VtuEncodingName;
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
     Epidermis, Kappa, LinearSolver, Load, Method, Simulation, StepControl, Stepping, ZonalEnergy,
@@ -364,6 +365,14 @@ const CASES: &[Case] = &[
         value: "false",
         reached: |s, _| !s.output.plots,
         bad: "2",
+    },
+    Case {
+        key: "vtu_encoding",
+        scene: STATIC,
+        setup: &[],
+        value: "binary",
+        reached: |s, _| s.output.vtu_encoding == VtuEncodingName::Binary,
+        bad: "gzip",
     },
 ];
 

@@ -1,6 +1,7 @@
-//! File I/O: VTU/PVD for ParaView and meshio, Gmsh `.msh` (2.2 and 4.1 ASCII) and TetGen
-//! `.node`/`.ele` readers. Readers never panic on malformed input: they return
-//! [`MeshError::Parse`] with the path, the line and what was expected. Writers are atomic.
+//! File I/O: VTU (ASCII or zlib-compressed binary) and PVD for ParaView and meshio, Gmsh
+//! `.msh` (2.2 and 4.1 ASCII) and TetGen `.node`/`.ele` readers. Readers never panic on
+//! malformed input: they return [`MeshError::Parse`] with the path, the line and what was
+//! expected. Writers are atomic.
 //!
 //! Gmsh and VTU files may hold 4- or 10-node tets: [`read_mesh_elements`] (and
 //! [`read_gmsh_elements`], [`read_vtu_elements`]) return an [`ElementMesh`] of the file's
@@ -13,6 +14,7 @@ mod gmsh;
 mod pvd;
 mod tetgen;
 mod text;
+mod vtk_binary;
 mod vtu;
 
 pub use gmsh::{read_gmsh, read_gmsh_elements};
@@ -20,7 +22,7 @@ pub use pvd::write_pvd;
 pub use tetgen::read_tetgen;
 pub use vtu::{
     read_vtu, read_vtu_elements, read_vtu_file, write_vtu, write_vtu_elements, Field, FieldValues,
-    VtuFile,
+    VtuEncoding, VtuFile,
 };
 
 use crate::element::TetElement;

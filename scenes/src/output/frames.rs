@@ -2,7 +2,7 @@
 //! mesh crate's writers.
 
 use crate::SceneError;
-use isochor_mesh::io::{write_pvd, write_vtu_elements, Field};
+use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
 use isochor_mesh::{ElementMesh, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -12,18 +12,26 @@ pub struct FrameWriter {
     dir: PathBuf,
     stem: String,
     every: usize,
+    encoding: VtuEncoding,
     zone_ids: Option<Vec<i32>>,
     entries: Vec<(f64, String)>,
 }
 
 impl FrameWriter {
-    /// A writer into `dir` naming files `STEM_00012.vtu` and `STEM.pvd`; `zone_ids` is the
-    /// first zone of each tet (or `None` without zones).
-    pub fn new(dir: &Path, stem: &str, every: usize, zone_ids: Option<Vec<i32>>) -> Self {
+    /// A writer into `dir` naming files `STEM_00012.vtu` and `STEM.pvd`, in `encoding`;
+    /// `zone_ids` is the first zone of each tet (or `None` without zones).
+    pub fn new(
+        dir: &Path,
+        stem: &str,
+        every: usize,
+        encoding: VtuEncoding,
+        zone_ids: Option<Vec<i32>>,
+    ) -> Self {
         FrameWriter {
             dir: dir.to_path_buf(),
             stem: stem.to_string(),
             every: every.max(1),
+            encoding,
             zone_ids,
             entries: Vec::new(),
         }
@@ -75,6 +83,7 @@ impl FrameWriter {
             mesh.connectivity(),
             &points,
             &cells,
+            self.encoding,
         )?;
         self.entries.push((t, name));
         Ok(())
