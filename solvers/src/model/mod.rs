@@ -20,6 +20,7 @@ use std::sync::Arc;
 
 mod dofs;
 mod problem;
+mod supports;
 
 pub use dofs::Dofs;
 pub use problem::{
