@@ -70,7 +70,7 @@ pub fn run_scene(
     };
     let bar = progress_bar(options.progress, total, &scene.name);
 
-    let mut history: Vec<StepRecord> = Vec::with_capacity(total);
+    let mut history: Vec<StepRecord> = Vec::new();
     let mut last_pressures: Vec<f64> = Vec::new();
     let mut last_energies = Energies::default();
     let mut write_error: Option<SceneError> = None;
