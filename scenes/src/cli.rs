@@ -152,8 +152,14 @@ pub enum Command {
     },
 }
 
+/// The `--set` overrides of a command line, each parameter set once.
 fn parse_overrides(set: &[String]) -> Result<Vec<Override>, SceneError> {
-    set.iter().map(|s| Override::parse(s)).collect()
+    let overrides = set
+        .iter()
+        .map(|s| Override::parse(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    crate::overrides::check_conflicts(&overrides)?;
+    Ok(overrides)
 }
 
 /// Runs a parsed command line, writing to `stdout`; returns the exit status.

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 /// Why a scene could not be loaded, built, run or written.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    #[error("unknown scene '{name}': not a built-in scene (valid: {valid}) and no such file")]
+    #[error("unknown scene '{name}': not a built-in scene (valid: {valid}), nor a file")]
     UnknownScene { name: String, valid: String },
     #[error("{origin}: TOML syntax error: {message}")]
     Toml { origin: String, message: String },

@@ -3,17 +3,21 @@
 //! The top layer of isochor: the TOML scene format ([`scene`]), `--set` overrides
 //! ([`overrides`]), the built-in scene library ([`builtin`], reproducing the experiments of
 //! Francu et al. 2021 and Sheen et al. 2021), problem construction ([`problem`]), probes
-//! ([`probes`]), output writers ([`output`]: VTU frames, `summary.json`, CSV logs, PNG plots),
-//! checkpoints of long runs ([`checkpoint`]), method comparisons ([`compare`]) and the `isochor` command-line program ([`cli`]).
+//! ([`probes`]), bounds checked before allocating ([`limits`]), output writers ([`output`]:
+//! VTU frames, `summary.json`, CSV logs, PNG plots), checkpoints of long runs
+//! ([`checkpoint`]), method comparisons ([`compare`]) and the `isochor` command-line program
+//! ([`cli`]).
 //!
 //! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
 //! [`RunResult`].
 
 pub mod builtin;
 pub mod checkpoint;
+mod checks;
 pub mod cli;
 pub mod compare;
 mod error;
+pub mod limits;
 pub mod load;
 pub mod output;
 pub mod overrides;

@@ -4,6 +4,7 @@
 use crate::overrides::{apply_all, Override};
 use crate::scene::{MeshSpec, Scene};
 use crate::{builtin, SceneError};
+use isochor_mesh::io::excerpt as shown;
 use std::path::{Path, PathBuf};
 
 /// A scene's TOML text and where it came from.
@@ -18,7 +19,9 @@ pub struct SceneSource {
 }
 
 impl SceneSource {
-    /// A built-in scene by name, or else a TOML file by path.
+    /// A built-in scene by name, or else a TOML file by path. A name that looks like a path
+    /// (it has a `/` or ends in `.toml`) or names an existing file is read as a file, with the
+    /// I/O error if that fails; any other unknown name lists the built-in scenes.
     pub fn resolve(spec: &str) -> Result<SceneSource, SceneError> {
         if let Some(text) = builtin::builtin(spec) {
             return Ok(SceneSource {
@@ -28,13 +31,41 @@ impl SceneSource {
             });
         }
         let path = Path::new(spec);
-        if !path.is_file() {
+        let looks_like_path = spec.contains(std::path::is_separator) || spec.ends_with(".toml");
+        if !looks_like_path && path.symlink_metadata().is_err() {
             return Err(SceneError::UnknownScene {
-                name: spec.to_string(),
+                name: shown(spec),
                 valid: builtin::names().collect::<Vec<_>>().join(", "),
             });
         }
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, e))?;
+        if path.is_dir() {
+            return Err(SceneError::io(
+                path,
+                std::io::Error::other("is a directory, not a scene file"),
+            ));
+        }
+        let bytes = std::fs::read(path).map_err(|e| {
+            let e = match e.kind() {
+                std::io::ErrorKind::NotFound => std::io::Error::new(
+                    e.kind(),
+                    format!(
+                        "no such scene file (built-in scenes: {})",
+                        builtin::names().collect::<Vec<_>>().join(", ")
+                    ),
+                ),
+                _ => e,
+            };
+            SceneError::io(path, e)
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            SceneError::io(
+                path,
+                std::io::Error::other(format!(
+                    "not a TOML scene: invalid UTF-8 at byte {}",
+                    e.utf8_error().valid_up_to()
+                )),
+            )
+        })?;
         let base_dir = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -47,7 +78,8 @@ impl SceneSource {
         })
     }
 
-    /// Parses the scene, applies the named variant (if any) and then the overrides.
+    /// Parses the scene, applies the named variant (if any) and then the overrides, and checks
+    /// that the result fits in memory ([`crate::limits`]).
     pub fn load(&self, variant: Option<&str>, overrides: &[Override]) -> Result<Scene, SceneError> {
         let tree: toml::Value = toml::from_str(&self.text).map_err(|e| SceneError::Toml {
             origin: self.origin.clone(),
@@ -72,12 +104,16 @@ impl SceneSource {
         }
         all.extend_from_slice(overrides);
         if all.is_empty() {
-            return Ok(self.resolve_paths(base));
+            let scene = self.resolve_paths(base);
+            crate::limits::check_memory(&scene, &self.origin)?;
+            return Ok(scene);
         }
         let mut tree = tree;
         apply_all(&mut tree, &all)?;
         let origin = format!("{} (with --set overrides)", self.origin);
-        Ok(self.resolve_paths(Scene::from_value(tree, &origin)?))
+        let scene = self.resolve_paths(Scene::from_value(tree, &origin)?);
+        crate::limits::check_memory(&scene, &origin)?;
+        Ok(scene)
     }
 
     fn resolve_paths(&self, mut scene: Scene) -> Scene {

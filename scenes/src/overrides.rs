@@ -131,10 +131,64 @@ pub fn flat_names() -> Vec<&'static str> {
     names
 }
 
-/// Applies overrides in order to a scene's TOML tree. A relative `mesh=PATH` is resolved
-/// against the working directory.
+/// Applies overrides in order to a scene's TOML tree (a later one wins). A relative
+/// `mesh=PATH` is resolved against the working directory.
 pub fn apply_all(tree: &mut Value, overrides: &[Override]) -> Result<(), SceneError> {
     overrides.iter().try_for_each(|o| apply(tree, o))
+}
+
+/// Refuses a command line's overrides that set one parameter twice, under one name or two
+/// (`E` and `young`), alternatives (`E` and `mu`), or a table and a key inside it
+/// (`mesh=PATH` and `res`): in order, the later one would silently win.
+pub fn check_conflicts(overrides: &[Override]) -> Result<(), SceneError> {
+    let mut targets: Vec<(String, &str)> = Vec::new();
+    for o in overrides {
+        let target = target(o);
+        if let Some((_, earlier)) = targets.iter().find(|(t, _)| conflict(t, &target)) {
+            let what = if stiffness(&target) {
+                "the stiffness: young (E) and mu are alternatives".to_string()
+            } else {
+                target.clone()
+            };
+            return Err(SceneError::Override {
+                key: o.key.clone(),
+                message: format!(
+                    "conflicts with --set {earlier} (both set {what}): give each parameter once"
+                ),
+            });
+        }
+        targets.push((target, &o.key));
+    }
+    Ok(())
+}
+
+/// The dotted key an override sets, as far as it is known without the scene (a flat mesh
+/// key other than `res` stays as given).
+fn target(o: &Override) -> String {
+    match (o.key.as_str(), &o.value) {
+        ("res", _) => "mesh.res".into(),
+        ("zones", Value::String(s)) if k_ring(s).is_some() => "zones".into(),
+        (key, _) => FLAT_KEYS
+            .iter()
+            .find(|(name, _)| *name == key)
+            .map_or(key, |(_, path)| path)
+            .to_string(),
+    }
+}
+
+fn stiffness(key: &str) -> bool {
+    key == "material.young" || key == "material.mu"
+}
+
+/// Whether two dotted keys set the same thing: equal, one inside the other, or the
+/// alternatives `young` and `mu`.
+fn conflict(a: &str, b: &str) -> bool {
+    let inside = |outer: &str, inner: &str| {
+        inner
+            .strip_prefix(outer)
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'))
+    };
+    inside(a, b) || inside(b, a) || (stiffness(a) && stiffness(b))
 }
 
 /// Applies one override.
@@ -163,7 +217,7 @@ pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
     }
     if o.key == "zones" {
         if let Value::String(s) = &o.value {
-            if let Some(k) = s.strip_suffix("-ring").and_then(|k| k.parse::<i64>().ok()) {
+            if let Some(k) = k_ring(s) {
                 set_path(tree, "zones.kind", Value::String("k-ring".into())).map_err(err)?;
                 return set_path(tree, "zones.k", Value::Integer(k)).map_err(err);
             }
@@ -182,6 +236,11 @@ pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
         }
     }
     set_path(tree, &path, o.value.clone()).map_err(err)
+}
+
+/// `K` of the shorthand `zones=K-ring`.
+fn k_ring(value: &str) -> Option<i64> {
+    value.strip_suffix("-ring")?.parse().ok()
 }
 
 fn root(tree: &mut Value) -> Result<&mut toml::Table, SceneError> {
@@ -372,6 +431,35 @@ mod tests {
         apply(&mut t, &Override::parse("mesh=foo.msh").unwrap()).unwrap();
         let e = apply(&mut t, &Override::parse("res=2").unwrap()).unwrap_err();
         assert!(e.to_string().contains("file"), "{e}");
+    }
+
+    #[test]
+    fn overrides_that_set_one_parameter_twice_conflict() {
+        let parse = |sets: &[&str]| -> Vec<Override> {
+            sets.iter().map(|s| Override::parse(s).unwrap()).collect()
+        };
+        for sets in [
+            &["E=1", "mu=2"][..],
+            &["E=1", "young=2"],
+            &["rho=1", "density=2"],
+            &["nu=0.3", "material.nu=0.4"],
+            &["res=2", "mesh=a.msh"],
+            &["zones=2-ring", "k=3"],
+            &["steps=2", "steps=3"],
+        ] {
+            let e = check_conflicts(&parse(sets)).unwrap_err();
+            assert!(
+                e.to_string().contains("conflicts with --set"),
+                "{sets:?}: {e}"
+            );
+        }
+        let e = check_conflicts(&parse(&["E=1", "mu=2"])).unwrap_err();
+        assert!(e.to_string().contains("alternatives"), "{e}");
+        check_conflicts(&parse(&["zones=k-ring", "k=2", "mu=3", "nu=0.4"])).unwrap();
+        // Applied in order (the library's reduced scenes extend a list), the later one wins.
+        let mut t = tree();
+        apply_all(&mut t, &parse(&["nu=0.3", "nu=0.4"])).unwrap();
+        assert_eq!(t["material"]["nu"].as_float(), Some(0.4));
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! From a scene to what the solver takes: the mesh, an [`isochor_solvers::Problem`] holding
 //! only the terms the scene names, the [`Stepping`] and the [`Settings`].
 
+use crate::checks;
 use crate::scene::{
     CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, ObstacleSpec, Scene,
     SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
@@ -27,8 +28,11 @@ pub struct Built {
     pub settings: Settings,
 }
 
-/// Builds the mesh, problem, stepping and settings of a scene.
+/// Builds the mesh, problem, stepping and settings of a scene, after checking that its
+/// estimated memory fits ([`crate::limits`]); refuses a quasi-static scene whose supports
+/// leave a rigid motion free and an obstacle that overlaps the body at the start.
 pub fn build(scene: &Scene) -> Result<Built, SceneError> {
+    crate::limits::check_memory(scene, &format!("scene {}", scene.name))?;
     let mesh = build_mesh(&scene.mesh, scene.element())?;
     let material = build_material(&scene.material)?;
     let selections = Selections::new(&mesh, &scene.selections)?;
@@ -83,18 +87,22 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
         None
     };
     drop(selections);
+    let problem = Problem {
+        mesh,
+        method,
+        material,
+        zones,
+        dirichlet,
+        loads,
+        obstacles,
+    };
+    let settings = settings(&scene.solver);
+    checks::supports(scene, &problem)?;
+    checks::obstacles_clear(scene, &problem, settings.contact_tolerance)?;
     Ok(Built {
-        problem: Problem {
-            mesh,
-            method,
-            material,
-            zones,
-            dirichlet,
-            loads,
-            obstacles,
-        },
+        problem,
         stepping: stepping(&scene.stepping),
-        settings: settings(&scene.solver),
+        settings,
     })
 }
 
@@ -252,37 +260,45 @@ pub fn build_mesh(spec: &MeshSpec, element: TetElement) -> Result<ElementMesh, S
     })
 }
 
-/// Reads a mesh file of 4- or 10-node tets by its extension.
+/// Reads a mesh file of 4- or 10-node tets by its extension; a missing file or a folder is
+/// said to be one.
 pub fn read_mesh_file(path: &Path) -> Result<ElementMesh, SceneError> {
     const VALID: &str = ".msh (Gmsh), .node/.ele (TetGen), .vtu";
+    let check = |p: &Path| -> Result<(), SceneError> {
+        let message = if p.is_dir() {
+            "is a directory, not a mesh file"
+        } else if p.is_file() {
+            return Ok(());
+        } else {
+            "mesh file not found"
+        };
+        Err(SceneError::io(
+            p,
+            std::io::Error::new(std::io::ErrorKind::NotFound, message),
+        ))
+    };
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    if !matches!(ext.as_str(), "msh" | "node" | "ele" | "vtu") {
-        return Err(SceneError::Invalid {
-            origin: path.display().to_string(),
-            key: "mesh.path".into(),
-            message: format!("unknown mesh file type '.{ext}' (valid: {VALID})"),
-        });
-    }
-    let check = |p: &Path| {
-        if p.is_file() {
-            Ok(())
-        } else {
-            Err(SceneError::io(
-                p,
-                std::io::Error::new(std::io::ErrorKind::NotFound, "mesh file not found"),
-            ))
-        }
-    };
     match ext.as_str() {
         "node" | "ele" => {
             check(&path.with_extension("node"))?;
             check(&path.with_extension("ele"))?;
         }
-        _ => check(path)?,
+        "msh" | "vtu" => check(path)?,
+        _ if path.is_dir() => check(path)?,
+        _ => {
+            return Err(SceneError::Invalid {
+                origin: path.display().to_string(),
+                key: "mesh.path".into(),
+                message: format!(
+                    "unknown mesh file type '.{}' (valid: {VALID})",
+                    isochor_mesh::io::excerpt(&ext)
+                ),
+            })
+        }
     }
     Ok(isochor_mesh::io::read_mesh_elements(path)?)
 }

@@ -118,7 +118,7 @@ fn execute(
         }
         _ => None,
     };
-    let mut history: Vec<StepRecord> = Vec::with_capacity(total);
+    let mut history: Vec<StepRecord> = Vec::new();
     let mut earlier_wall_time = 0.0;
     if let Some(checkpoint) = resume {
         sim.restore((&checkpoint.solver).into())?;

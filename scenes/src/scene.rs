@@ -683,6 +683,7 @@ impl Scene {
 
     /// Deserializes a scene from a TOML value tree, naming the key of the first error.
     pub fn from_value(value: toml::Value, origin: &str) -> Result<Scene, SceneError> {
+        crate::checks::finite_numbers(&value, origin)?;
         let scene: Scene = serde_path_to_error::deserialize(value).map_err(|e| {
             let key = e.path().to_string();
             SceneError::Invalid {
@@ -924,7 +925,7 @@ impl Scene {
                     .map_err(|m| bad(&format!("variants.{variant}.{key}"), m))?;
             }
         }
-        Ok(())
+        crate::limits::check_steps(self, origin)
     }
 }
 

@@ -25,6 +25,26 @@ pub struct ElementMesh {
     edges: Vec<[usize; 2]>,
 }
 
+/// How errors of [`ElementMesh::from_nodes`] number nodes and elements: by the caller's labels
+/// (a file's node and element tags), or else by their index in the input.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Labels<'a> {
+    /// The label of each input node.
+    pub nodes: Option<&'a [usize]>,
+    /// The label of each input element.
+    pub elements: Option<&'a [usize]>,
+}
+
+impl Labels<'_> {
+    fn node(&self, i: usize) -> usize {
+        self.nodes.and_then(|l| l.get(i).copied()).unwrap_or(i)
+    }
+
+    fn element(&self, e: usize) -> usize {
+        self.elements.and_then(|l| l.get(e).copied()).unwrap_or(e)
+    }
+}
+
 /// `[a, b]` sorted.
 fn sorted([a, b]: [usize; 2]) -> [usize; 2] {
     if a < b {
@@ -127,11 +147,22 @@ impl ElementMesh {
     /// a corner repeated or degenerate ([`TetMesh::new`]'s errors), a node that is a corner in
     /// one element and a mid-edge node in another, a mid-edge node on two different edges or
     /// two mid-edge nodes on one edge ([`MeshError::MidEdgeNode`]), or a folded element
-    /// ([`MeshError::FoldedElement`]).
+    /// ([`MeshError::FoldedElement`]). Errors number nodes and elements as the input does
+    /// (not as renumbered).
     pub fn from_nodes(
         kind: TetElement,
         nodes: Vec<Vec3>,
         connectivity: Vec<usize>,
+    ) -> Result<Self, MeshError> {
+        Self::from_labelled_nodes(kind, nodes, connectivity, Labels::default())
+    }
+
+    /// [`ElementMesh::from_nodes`] with errors that name nodes and elements by `labels`.
+    pub(crate) fn from_labelled_nodes(
+        kind: TetElement,
+        nodes: Vec<Vec3>,
+        connectivity: Vec<usize>,
+        labels: Labels,
     ) -> Result<Self, MeshError> {
         let n = kind.num_nodes();
         if connectivity.is_empty() {
@@ -151,7 +182,7 @@ impl ElementMesh {
                 let wanted = if a < 4 { Role::Corner } else { Role::Mid };
                 let Some(r) = role.get_mut(index) else {
                     return Err(MeshError::IndexOutOfRange {
-                        tet: e,
+                        tet: labels.element(e),
                         index,
                         vertices: nodes.len(),
                     });
@@ -168,10 +199,11 @@ impl ElementMesh {
                             (e, first_use[index])
                         };
                         return Err(MeshError::MidEdgeNode {
-                            element: mid_in,
-                            node: index,
+                            element: labels.element(mid_in),
+                            node: labels.node(index),
                             reason: format!(
-                                "is a mid-edge node here and a corner of element {corner_in}"
+                                "is a mid-edge node here and a corner of element {}",
+                                labels.element(corner_in)
                             ),
                         });
                     }
@@ -181,22 +213,50 @@ impl ElementMesh {
         }
         // New index of every node: corners first, then mid-edge nodes, each in input order.
         let mut new_index = vec![usize::MAX; nodes.len()];
+        let mut old_index = Vec::new();
         let mut positions = Vec::new();
         for pass in [Role::Corner, Role::Mid] {
             for (i, p) in nodes.iter().enumerate() {
                 if role[i] == pass {
                     new_index[i] = positions.len();
+                    old_index.push(i);
                     positions.push(*p);
                 }
             }
         }
+        // The label of a renumbered node.
+        let label = |new: usize| labels.node(old_index[new]);
         let nv = role.iter().filter(|&&r| r == Role::Corner).count();
         let input: Vec<usize> = connectivity.iter().map(|&i| new_index[i]).collect();
         let tets: Vec<[usize; 4]> = input
             .chunks_exact(n)
             .map(|c| [c[0], c[1], c[2], c[3]])
             .collect();
-        let corners = TetMesh::new(positions[..nv].to_vec(), tets)?;
+        let corners = TetMesh::new(positions[..nv].to_vec(), tets).map_err(|e| match e {
+            MeshError::RepeatedVertex {
+                tet,
+                vertex,
+                indices,
+            } => MeshError::RepeatedVertex {
+                tet: labels.element(tet),
+                vertex: label(vertex),
+                indices: indices.map(label),
+            },
+            MeshError::Degenerate {
+                tet,
+                volume,
+                threshold,
+            } => MeshError::Degenerate {
+                tet: labels.element(tet),
+                volume,
+                threshold,
+            },
+            MeshError::NonFiniteVertex { vertex, coords } => MeshError::NonFiniteVertex {
+                vertex: label(vertex),
+                coords,
+            },
+            other => other,
+        })?;
         if kind == TetElement::Tet4 {
             return Ok(Self::linear(corners));
         }
@@ -206,7 +266,7 @@ impl ElementMesh {
         {
             let p = positions[nv + vertex];
             return Err(MeshError::NonFiniteVertex {
-                vertex: nv + vertex,
+                vertex: label(nv + vertex),
                 coords: [p.x, p.y, p.z],
             });
         }
@@ -226,24 +286,29 @@ impl ElementMesh {
                     .unwrap_or_default();
                 let mid = given[4 + k];
                 let mismatch = |reason: String| MeshError::MidEdgeNode {
-                    element: e,
-                    node: mid,
+                    element: labels.element(e),
+                    node: label(mid),
                     reason,
                 };
                 match edge_of[mid - nv] {
                     None => edge_of[mid - nv] = Some((edge, e)),
                     Some((other, f)) if other != edge => {
                         return Err(mismatch(format!(
-                            "lies on edge {edge:?} here but on edge {other:?} in element {f}"
+                            "lies on edge {:?} here but on edge {:?} in element {}",
+                            edge.map(label),
+                            other.map(label),
+                            labels.element(f)
                         )))
                     }
                     _ => {}
                 }
                 match mid_of.insert(edge, (mid, e)) {
                     Some((other, f)) if other != mid => {
+                        let (edge, f, other) = (edge.map(label), labels.element(f), label(other));
                         return Err(mismatch(format!(
-                            "is a second mid-edge node of edge {edge:?}, whose node in element {f} is {other}"
-                        )))
+                            "is a second mid-edge node of edge {edge:?}, whose node in element \
+                             {f} is {other}"
+                        )));
                     }
                     _ => {}
                 }
@@ -262,7 +327,18 @@ impl ElementMesh {
             connectivity,
             edges,
         };
-        mesh.check_jacobians()?;
+        mesh.check_jacobians().map_err(|e| match e {
+            MeshError::FoldedElement {
+                element,
+                point,
+                determinant,
+            } => MeshError::FoldedElement {
+                element: labels.element(element),
+                point,
+                determinant,
+            },
+            other => other,
+        })?;
         Ok(mesh)
     }
 

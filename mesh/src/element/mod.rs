@@ -42,6 +42,7 @@ mod triangle;
 
 pub use gradient::deformation_gradient;
 pub use mesh::ElementMesh;
+pub(crate) use mesh::Labels;
 pub use quadrature::{TetQuadrature, TriQuadrature};
 pub use rest::RestGeometry;
 pub use surface::ElementSurface;

@@ -4,8 +4,8 @@
 //! follow from the tets ([`crate::ElementMesh::boundary`]); other volume elements, and files
 //! mixing 4- and 10-node tets, are rejected.
 
-use super::text::{Fields, Lines};
-use super::{assemble, read_text, Cells};
+use super::text::{excerpt, Fields, Lines};
+use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
 use crate::{ElementMesh, MeshError, TetMesh, Vec3};
 use std::collections::HashMap;
@@ -17,12 +17,12 @@ use std::path::Path;
 /// [`read_gmsh_elements`].
 pub fn read_gmsh(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let path = path.as_ref();
-    let (positions, cells) = parse(path, &read_text(path)?)?;
-    linear(path, positions, cells)
+    let (nodes, cells) = parse(path, &read_text(path)?)?;
+    linear(path, nodes, cells)
 }
 
 /// The linear mesh of parsed nodes and 4-node tets; 10-node tets are refused.
-fn linear(path: &Path, positions: Vec<Vec3>, cells: Cells) -> Result<TetMesh, MeshError> {
+fn linear(path: &Path, nodes: FileNodes, cells: Cells) -> Result<TetMesh, MeshError> {
     if cells.kind == TetElement::Tet10 {
         return Err(MeshError::parse(
             path,
@@ -31,7 +31,7 @@ fn linear(path: &Path, positions: Vec<Vec3>, cells: Cells) -> Result<TetMesh, Me
              (its corner mesh is the ElementMesh's corners())",
         ));
     }
-    Ok(assemble(path, positions, cells)?.into_corners())
+    Ok(assemble(path, nodes, cells)?.into_corners())
 }
 
 /// Reads a Gmsh ASCII mesh (format 2.x or 4.1) of 4- or 10-node tets into an
@@ -40,8 +40,8 @@ fn linear(path: &Path, positions: Vec<Vec3>, cells: Cells) -> Result<TetMesh, Me
 /// mid-edge nodes). A bad element is reported at its line.
 pub fn read_gmsh_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshError> {
     let path = path.as_ref();
-    let (positions, cells) = parse(path, &read_text(path)?)?;
-    assemble(path, positions, cells)
+    let (nodes, cells) = parse(path, &read_text(path)?)?;
+    assemble(path, nodes, cells)
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -50,10 +50,11 @@ enum Version {
     V41,
 }
 
-/// Nodes by tag: positions and tag -> index.
+/// Nodes by tag: positions, tags and tag -> index.
 #[derive(Default)]
 struct Nodes {
     positions: Vec<Vec3>,
+    tags: Vec<usize>,
     index: HashMap<usize, usize>,
 }
 
@@ -63,6 +64,7 @@ impl Nodes {
             return Err(fields.error(format!("node tag {tag} is defined twice")));
         }
         self.positions.push(p);
+        self.tags.push(tag);
         Ok(())
     }
 
@@ -74,7 +76,7 @@ impl Nodes {
     }
 }
 
-fn parse(path: &Path, text: &str) -> Result<(Vec<Vec3>, Cells), MeshError> {
+fn parse(path: &Path, text: &str) -> Result<(FileNodes, Cells), MeshError> {
     let mut lines = Lines::new(path, text, None);
     let mut version = None;
     let mut nodes: Option<Nodes> = None;
@@ -83,7 +85,10 @@ fn parse(path: &Path, text: &str) -> Result<(Vec<Vec3>, Cells), MeshError> {
         if !header.starts_with('$') {
             return Err(lines.error(
                 line,
-                format!("expected a section header such as $Nodes, found `{header}`"),
+                format!(
+                    "expected a section header such as $Nodes, found `{}`",
+                    excerpt(header)
+                ),
             ));
         }
         let name = &header[1..];
@@ -107,7 +112,7 @@ fn parse(path: &Path, text: &str) -> Result<(Vec<Vec3>, Cells), MeshError> {
         let end = format!("$End{name}");
         let fields = lines.fields(&end)?;
         if fields.text != end {
-            return Err(fields.error(format!("expected {end}, found `{}`", fields.text)));
+            return Err(fields.error(format!("expected {end}, found `{}`", excerpt(fields.text))));
         }
     }
     if version.is_none() {
@@ -116,7 +121,11 @@ fn parse(path: &Path, text: &str) -> Result<(Vec<Vec3>, Cells), MeshError> {
     let (Some(nodes), Some(cells)) = (nodes, cells) else {
         return Err(lines.eof("a $Nodes and an $Elements section"));
     };
-    Ok((nodes.positions, cells))
+    let nodes = FileNodes {
+        positions: nodes.positions,
+        tags: nodes.tags,
+    };
+    Ok((nodes, cells))
 }
 
 /// `version file-type data-size`: ASCII 2.x or 4.1 only.
@@ -127,7 +136,8 @@ fn mesh_format(lines: &mut Lines) -> Result<Version, MeshError> {
     let file_type = f.usize("the file type (0 = ASCII)")?;
     if file_type != 0 {
         return Err(f.error(format!(
-            "binary Gmsh files are not supported (`{text}`): save as ASCII format 4.1 or 2.2"
+            "binary Gmsh files are not supported (`{}`): save as ASCII format 4.1 or 2.2",
+            excerpt(text)
         )));
     }
     if (2.0..3.0).contains(&version) {
@@ -188,7 +198,7 @@ fn read_nodes(lines: &mut Lines, version: Version) -> Result<Nodes, MeshError> {
                 if dim > 3 || parametric > 1 {
                     return Err(b.error(format!(
                         "expected entityDim <= 3 and parametric 0 or 1, found `{}`",
-                        b.text
+                        excerpt(b.text)
                     )));
                 }
                 let mut tags = Vec::new();
@@ -269,6 +279,7 @@ fn reject(f: &Fields, kind: usize) -> MeshError {
 /// Reads the nodes of one tet of `kind` into `cells`; the first tet fixes the kind of all.
 fn read_tet(
     f: &mut Fields,
+    tag: usize,
     kind: TetElement,
     nodes: &Nodes,
     cells: &mut Option<Cells>,
@@ -276,6 +287,7 @@ fn read_tet(
     let cells = cells.get_or_insert_with(|| Cells {
         kind,
         connectivity: Vec::new(),
+        tags: Vec::new(),
         lines: Vec::new(),
     });
     if cells.kind != kind {
@@ -292,6 +304,7 @@ fn read_tet(
         cells.connectivity.push(nodes.get(tag, f)?);
     }
     f.end(&format!("the {n} nodes of the tetrahedron"))?;
+    cells.tags.push(tag);
     cells.lines.push(f.line);
     Ok(())
 }
@@ -309,12 +322,12 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<C
                     i + 1
                 );
                 let mut f = lines.data(&what)?;
-                f.usize("element tag")?;
+                let tag = f.usize("element tag")?;
                 let kind = f.usize("element type")?;
                 if let Some(tet) = tet_type(kind) {
                     let ntags = f.usize("number of tags")?;
                     f.skip(ntags, "an element tag")?;
-                    read_tet(&mut f, tet, nodes, &mut cells)?;
+                    read_tet(&mut f, tag, tet, nodes, &mut cells)?;
                 } else if !is_lower_dimensional(kind) {
                     return Err(reject(&f, kind));
                 }
@@ -338,8 +351,8 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<C
                 for _ in 0..in_block {
                     let mut f = lines.data("an element line `tag node...`")?;
                     if let Some(tet) = tet {
-                        f.usize("element tag")?;
-                        read_tet(&mut f, tet, nodes, &mut cells)?;
+                        let tag = f.usize("element tag")?;
+                        read_tet(&mut f, tag, tet, nodes, &mut cells)?;
                     }
                 }
                 seen = seen.saturating_add(in_block);
@@ -355,6 +368,7 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<C
     Ok(cells.unwrap_or(Cells {
         kind: TetElement::Tet4,
         connectivity: Vec::new(),
+        tags: Vec::new(),
         lines: Vec::new(),
     }))
 }
@@ -365,8 +379,8 @@ mod tests {
 
     fn read(text: &str) -> Result<TetMesh, MeshError> {
         let path = Path::new("t.msh");
-        let (positions, cells) = parse(path, text)?;
-        linear(path, positions, cells)
+        let (nodes, cells) = parse(path, text)?;
+        linear(path, nodes, cells)
     }
 
     fn err(text: &str) -> (usize, String) {
@@ -419,9 +433,25 @@ mod tests {
             m.contains("unexpected end of file") && m.contains("node 4 of 5"),
             "{m}"
         );
+        // Elements and nodes are named by their tags in the file, not by internal indices.
         let (line, m) = err(&V2.replace("1 1 2 3 4", "1 1 2 3 3"));
         assert_eq!(line, 15);
-        assert!(m.contains("more than once"), "{m}");
+        assert!(
+            m.contains("tet 2: vertex 3 appears more than once in [1, 2, 3, 3]")
+                && m.contains("numbered as in the file"),
+            "{m}"
+        );
+        let (line, m) = err(&V2.replace("4 0 0 1", "4 1 1 0"));
+        assert_eq!(line, 15);
+        assert!(m.contains("tet 2 is degenerate"), "{m}");
+        // Garbage is escaped and cut, not echoed raw.
+        let garbage = format!("\u{1b}[31m{}\n", "x".repeat(500));
+        let (_, m) = err(&garbage);
+        assert!(
+            m.contains("`\\u{1b}[31mxxx") && m.contains("... (505 characters)`"),
+            "{m}"
+        );
+        assert!(m.len() < 200, "{m}");
         let (_, m) = err(&V2.replace("5\n1 0 0 0", "99999999999999999999999\n1 0 0 0"));
         assert!(m.contains("number of nodes"), "{m}");
         let (line, m) = err("hello\n");
@@ -443,8 +473,8 @@ mod tests {
     #[test]
     fn ten_node_v2_file_reads_reoriented() {
         let path = Path::new("t.msh");
-        let (positions, cells) = parse(path, V2_TET10).unwrap();
-        let mesh = assemble(path, positions, cells).unwrap();
+        let (nodes, cells) = parse(path, V2_TET10).unwrap();
+        let mesh = assemble(path, nodes, cells).unwrap();
         assert_eq!(mesh.kind(), TetElement::Tet10);
         assert_eq!((mesh.num_vertices(), mesh.num_nodes()), (4, 10));
         assert_eq!(mesh.corners().reoriented(), 1);
@@ -471,13 +501,13 @@ mod tests {
         let shared = shared
             .replace("3 4 2 1 1 12", "3 11 2 1 1 12")
             .replace("12 2 3 4\n", "12 2 3 4 1 23 13 14 24 34\n");
-        let (positions, cells) = parse(path, &shared).unwrap();
-        match assemble(path, positions, cells) {
+        let (nodes, cells) = parse(path, &shared).unwrap();
+        match assemble(path, nodes, cells) {
             Err(MeshError::Parse { line, message, .. }) => {
                 assert_eq!(line, 20);
                 assert!(
                     message.contains(
-                        "element 0: node 4 is a mid-edge node here and a corner of element 1"
+                        "element 2: node 12 is a mid-edge node here and a corner of element 3"
                     ),
                     "{message}"
                 );
@@ -485,8 +515,8 @@ mod tests {
             other => panic!("expected a parse error, got {other:?}"),
         }
         let doubled = V2_TET10.replace("13 23 12 14 24 34", "13 23 12 14 23 34");
-        let (positions, cells) = parse(path, &doubled).unwrap();
-        match assemble(path, positions, cells) {
+        let (nodes, cells) = parse(path, &doubled).unwrap();
+        match assemble(path, nodes, cells) {
             Err(MeshError::Parse { line, message, .. }) => {
                 assert_eq!(line, 20);
                 assert!(message.contains("lies on edge"), "{message}");

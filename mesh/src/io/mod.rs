@@ -20,12 +20,13 @@ mod vtu;
 pub use gmsh::{read_gmsh, read_gmsh_elements};
 pub use pvd::write_pvd;
 pub use tetgen::read_tetgen;
+pub use text::excerpt;
 pub use vtu::{
     read_vtu, read_vtu_elements, read_vtu_file, write_vtu, write_vtu_elements, Field, FieldValues,
     VtuEncoding, VtuFile,
 };
 
-use crate::element::TetElement;
+use crate::element::{Labels, TetElement};
 use crate::{ElementMesh, MeshError, TetMesh, Vec3};
 use std::path::Path;
 
@@ -74,32 +75,49 @@ fn read_text(path: &Path) -> Result<String, MeshError> {
 }
 
 /// The elements read from a file: their kind, `kind.num_nodes()` node indices per element, and
-/// the line each was read from.
+/// the tag (number in the file) and line of each.
 struct Cells {
     kind: TetElement,
     connectivity: Vec<usize>,
+    tags: Vec<usize>,
     lines: Vec<usize>,
+}
+
+/// Parsed nodes: positions and the tag (number in the file) of each.
+struct FileNodes {
+    positions: Vec<Vec3>,
+    tags: Vec<usize>,
 }
 
 /// Builds a mesh from parsed nodes and elements with [`ElementMesh::from_nodes`] (which drops
 /// nodes no element uses and renumbers the rest, corners first, in order). An element the
-/// constructor rejects is reported at its line of `path`.
-fn assemble(path: &Path, positions: Vec<Vec3>, cells: Cells) -> Result<ElementMesh, MeshError> {
+/// constructor rejects is reported at its line of `path`, with nodes and elements numbered by
+/// their tags in the file.
+fn assemble(path: &Path, nodes: FileNodes, cells: Cells) -> Result<ElementMesh, MeshError> {
     if cells.connectivity.is_empty() {
         return Err(MeshError::Format {
             path: path.into(),
             message: "the file contains no tetrahedra".into(),
         });
     }
-    ElementMesh::from_nodes(cells.kind, positions, cells.connectivity).map_err(|e| {
-        let element = match e {
-            MeshError::RepeatedVertex { tet, .. } | MeshError::Degenerate { tet, .. } => tet,
-            MeshError::FoldedElement { element, .. } | MeshError::MidEdgeNode { element, .. } => {
-                element
-            }
-            other => return other,
-        };
-        let line = cells.lines.get(element).copied().unwrap_or(0);
-        MeshError::parse(path, line, e.to_string())
-    })
+    let labels = Labels {
+        nodes: Some(&nodes.tags),
+        elements: Some(&cells.tags),
+    };
+    ElementMesh::from_labelled_nodes(cells.kind, nodes.positions, cells.connectivity, labels)
+        .map_err(|e| {
+            let tag = match e {
+                MeshError::RepeatedVertex { tet, .. } | MeshError::Degenerate { tet, .. } => tet,
+                MeshError::FoldedElement { element, .. }
+                | MeshError::MidEdgeNode { element, .. } => element,
+                other => return other,
+            };
+            let line = cells
+                .tags
+                .iter()
+                .position(|&t| t == tag)
+                .and_then(|e| cells.lines.get(e).copied())
+                .unwrap_or(0);
+            MeshError::parse(path, line, format!("{e} (numbered as in the file)"))
+        })
 }

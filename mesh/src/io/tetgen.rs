@@ -1,8 +1,8 @@
 //! TetGen `.node` / `.ele` reader: 0- or 1-based indices (TetGen's `-z` switch), attributes
 //! and boundary markers tolerated, `#` comments skipped.
 
-use super::text::Lines;
-use super::{assemble, read_text, Cells};
+use super::text::{excerpt, Lines};
+use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
 use crate::{MeshError, TetMesh, Vec3};
 use std::path::Path;
@@ -17,7 +17,15 @@ pub fn read_tetgen(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let ele_path = path.with_extension("ele");
     let (positions, base) = parse_node(&node_path, &read_text(&node_path)?)?;
     let cells = parse_ele(&ele_path, &read_text(&ele_path)?, base, positions.len())?;
-    Ok(assemble(&ele_path, positions, cells)?.into_corners())
+    Ok(assemble(&ele_path, numbered(positions, base), cells)?.into_corners())
+}
+
+/// The nodes with their indices in the file (from `base`).
+fn numbered(positions: Vec<Vec3>, base: usize) -> FileNodes {
+    FileNodes {
+        tags: (base..base + positions.len()).collect(),
+        positions,
+    }
 }
 
 /// `n dim attributes markers`, then `index x y z [attributes] [marker]` per node. Returns the
@@ -32,7 +40,7 @@ fn parse_node(path: &Path, text: &str) -> Result<(Vec<Vec3>, usize), MeshError> 
     if dim != 3 || markers > 1 {
         return Err(h.error(format!(
             "expected dimension 3 and 0 or 1 boundary markers, found `{}`",
-            h.text
+            excerpt(h.text)
         )));
     }
     let mut positions = Vec::new();
@@ -62,7 +70,10 @@ fn parse_node(path: &Path, text: &str) -> Result<(Vec<Vec3>, usize), MeshError> 
     if let Some((line, text)) = lines.next_line() {
         return Err(lines.error(
             line,
-            format!("expected end of file after {count} points, found `{text}`"),
+            format!(
+                "expected end of file after {count} points, found `{}`",
+                excerpt(text)
+            ),
         ));
     }
     Ok((positions, base))
@@ -81,6 +92,7 @@ fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cell
         )));
     }
     let mut connectivity = Vec::new();
+    let mut tags = Vec::new();
     let mut tet_lines = Vec::new();
     for i in 0..count {
         let mut f = lines.fields(&format!("tetrahedron {} of {count}", i + 1))?;
@@ -104,17 +116,22 @@ fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cell
         f.skip(attributes, "a tetrahedron attribute")?;
         f.end("the tetrahedron's nodes and attributes")?;
         connectivity.extend(tet);
+        tags.push(index);
         tet_lines.push(f.line);
     }
     if let Some((line, text)) = lines.next_line() {
         return Err(lines.error(
             line,
-            format!("expected end of file after {count} tetrahedra, found `{text}`"),
+            format!(
+                "expected end of file after {count} tetrahedra, found `{}`",
+                excerpt(text)
+            ),
         ));
     }
     Ok(Cells {
         kind: TetElement::Tet4,
         connectivity,
+        tags,
         lines: tet_lines,
     })
 }
@@ -130,7 +147,7 @@ mod tests {
     fn parse_pair(node: &str, ele: &str) -> Result<TetMesh, MeshError> {
         let (x, base) = parse_node(Path::new("t.node"), node)?;
         let cells = parse_ele(Path::new("t.ele"), ele, base, x.len())?;
-        Ok(assemble(Path::new("t.ele"), x, cells)?.into_corners())
+        Ok(assemble(Path::new("t.ele"), numbered(x, base), cells)?.into_corners())
     }
 
     fn err(node: &str, ele: &str) -> (String, usize, String) {
@@ -175,6 +192,12 @@ mod tests {
         let (path, line, m) = err(NODE, "1 10 0\n");
         assert_eq!((path.as_str(), line), ("t.ele", 1));
         assert!(m.contains("10-node"), "{m}");
+        let (_, line, m) = err(NODE, "1 4 1\n1 1 2 3 3 7\n");
+        assert_eq!(line, 2);
+        assert!(
+            m.contains("tet 1: vertex 3 appears more than once in [1, 2, 3, 3]"),
+            "{m}"
+        );
         let (_, line, m) = err(NODE, "1 4 1\n1 1 2 3\n");
         assert_eq!(line, 2);
         assert!(m.contains("expected node 4 of the tetrahedron"), "{m}");

@@ -4,6 +4,30 @@
 use crate::MeshError;
 use std::path::Path;
 
+/// Characters of a token shown in a message; a longer one is cut (see [`excerpt`]).
+const SHOWN_CHARS: usize = 80;
+
+/// A token of a file or the command line as shown in a message: control and other
+/// non-printable characters escaped (`\u{1b}`), the replacement character of invalid UTF-8
+/// shown as `\u{fffd}`, and anything longer than 80 characters cut, with an ellipsis and
+/// the full length.
+pub fn excerpt(text: &str) -> String {
+    let escaped = |c: char| -> String {
+        if c.is_control() || c == char::REPLACEMENT_CHARACTER || c.is_whitespace() && c != ' ' {
+            c.escape_unicode().to_string()
+        } else {
+            c.to_string()
+        }
+    };
+    let length = text.chars().count();
+    let shown: String = text.chars().take(SHOWN_CHARS).map(escaped).collect();
+    if length > SHOWN_CHARS {
+        format!("{shown}... ({length} characters)")
+    } else {
+        shown
+    }
+}
+
 /// The non-blank lines of a file, numbered from 1, with `comment` stripped when given.
 pub(crate) struct Lines<'a> {
     path: &'a Path,
@@ -55,7 +79,7 @@ impl<'a> Lines<'a> {
         if fields.text.starts_with('$') {
             return Err(fields.error(format!(
                 "expected {what}, found `{}`: the section is shorter than its declared count",
-                fields.text
+                excerpt(fields.text)
             )));
         }
         Ok(fields)
@@ -110,7 +134,8 @@ impl<'a> Fields<'a> {
         let t = self.token(what)?;
         t.parse().map_err(|_| {
             self.error(format!(
-                "expected {what} (a non-negative integer), found `{t}`"
+                "expected {what} (a non-negative integer), found `{}`",
+                excerpt(t)
             ))
         })
     }
@@ -118,8 +143,12 @@ impl<'a> Fields<'a> {
     /// The next field as an integer of either sign.
     pub fn i64(&mut self, what: &str) -> Result<i64, MeshError> {
         let t = self.token(what)?;
-        t.parse()
-            .map_err(|_| self.error(format!("expected {what} (an integer), found `{t}`")))
+        t.parse().map_err(|_| {
+            self.error(format!(
+                "expected {what} (an integer), found `{}`",
+                excerpt(t)
+            ))
+        })
     }
 
     /// The next field as a finite real number.
@@ -127,8 +156,11 @@ impl<'a> Fields<'a> {
         let t = self.token(what)?;
         match t.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(self.error(format!("expected a finite {what}, found `{t}`"))),
-            Err(_) => Err(self.error(format!("expected {what} (a number), found `{t}`"))),
+            Ok(_) => Err(self.error(format!("expected a finite {what}, found `{}`", excerpt(t)))),
+            Err(_) => Err(self.error(format!(
+                "expected {what} (a number), found `{}`",
+                excerpt(t)
+            ))),
         }
     }
 

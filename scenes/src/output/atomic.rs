@@ -9,8 +9,9 @@ const MARKERS: [&str; 3] = ["summary.json", "compare.csv", "study.csv"];
 
 /// A temporary folder `.NAME.tmp` next to the destination; [`OutputDir::commit`] renames it
 /// to the destination, and dropping it uncommitted removes it, unless it holds a checkpoint
-/// (then `isochor resume` continues the run in it). A run killed before either leaves the
-/// folder behind; the next run into the same destination removes it.
+/// (then `isochor resume` continues the run in it). The name is fixed per destination, so
+/// the folder a killed run left behind is removed by the next run into the same destination
+/// (two runs into one destination at once are not supported).
 #[derive(Debug)]
 pub struct OutputDir {
     temp: PathBuf,
@@ -27,8 +28,11 @@ impl OutputDir {
         if let Some(parent) = temp.parent() {
             std::fs::create_dir_all(parent).map_err(|e| SceneError::io(parent, e))?;
         }
-        if temp.exists() {
-            std::fs::remove_dir_all(&temp).map_err(|e| SceneError::io(&temp, e))?;
+        // Left behind by an earlier run that was killed (or by a failed commit).
+        for stale in [&temp, &temp.with_extension("old")] {
+            if stale.symlink_metadata().is_ok() {
+                remove(stale)?;
+            }
         }
         std::fs::create_dir(&temp).map_err(|e| SceneError::io(&temp, e))?;
         Ok(OutputDir {
@@ -107,6 +111,16 @@ fn temporary(dest: &Path) -> Result<PathBuf, SceneError> {
     Ok(parent.join(format!(".{name}.tmp")))
 }
 
+/// Removes a stale temporary folder (or a file or link in its place).
+fn remove(path: &Path) -> Result<(), SceneError> {
+    let result = if path.is_dir() && !path.is_symlink() {
+        std::fs::remove_dir_all(path)
+    } else {
+        std::fs::remove_file(path)
+    };
+    result.map_err(|e| SceneError::io(path, e))
+}
+
 fn check_replaceable(dest: &Path) -> Result<(), SceneError> {
     if !dest.exists() {
         return Ok(());
@@ -173,6 +187,27 @@ mod tests {
         std::fs::create_dir(&foreign).unwrap();
         std::fs::write(foreign.join("thesis.tex"), "x").unwrap();
         assert!(OutputDir::create(&foreign).is_err());
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_killed_runs_temporary_folder_is_removed_by_the_next_run() {
+        let root = scratch("stale");
+        let dest = root.join("out");
+        let stale = root.join(".out.tmp");
+        std::fs::create_dir(&stale).unwrap();
+        std::fs::write(stale.join("frame_0.vtu"), "partial").unwrap();
+        std::fs::write(root.join(".out.old"), "a file in the way").unwrap();
+        let out = OutputDir::create(&dest).unwrap();
+        assert_eq!(out.path(), stale);
+        assert_eq!(std::fs::read_dir(out.path()).unwrap().count(), 0);
+        std::fs::write(out.path().join("summary.json"), "{}").unwrap();
+        out.commit().unwrap();
+        let names: Vec<_> = std::fs::read_dir(&root)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, ["out"]);
         std::fs::remove_dir_all(&root).unwrap();
     }
 }

@@ -21,6 +21,7 @@ use std::sync::Arc;
 mod dofs;
 mod problem;
 mod schedule;
+mod supports;
 
 pub use dofs::Dofs;
 pub use problem::{

@@ -1,0 +1,432 @@
+//! Hostile inputs to the `isochor` binary: sizes beyond the machine, non-finite numbers,
+//! conflicting keys, bodies the supports do not hold, obstacles inside the body at the
+//! start, stale temporary outputs, and paths, tokens and bytes that must be reported
+//! clearly. Each is refused with exit status 1 and a message naming the key or file, without
+//! a panic and (where it could) without allocating first.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn isochor(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_isochor"))
+        .args(args)
+        .output()
+        .expect("the isochor binary runs")
+}
+
+/// Runs the binary in 64 MiB of address space (itself included): a refusal that allocated
+/// the mesh, or a vector of steps, first would abort instead.
+fn isochor_in_64_mib(args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 65536 && exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_isochor"))
+        .args(args)
+        .output()
+        .expect("sh runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("isochor-bounds-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Asserts a clean refusal (status 1, no panic, nothing on stdout) whose message holds every
+/// needle; returns the message.
+fn refused(o: &Output, needles: &[&str]) -> String {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(1), "stderr: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        o.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    for n in needles {
+        assert!(err.contains(n), "stderr lacks {n:?}: {err}");
+    }
+    err
+}
+
+#[test]
+fn sizes_beyond_the_machine_are_refused_before_allocating() {
+    let o = isochor_in_64_mib(&["run", "cantilever", "--set", "res=1000000"]);
+    refused(
+        &o,
+        &["key 'mesh.res'", "res = 1000000", "tets", "unknowns", "GiB"],
+    );
+    let o = isochor_in_64_mib(&["run", "cantilever", "--set", "cells=[100000,100000,100000]"]);
+    refused(
+        &o,
+        &["key 'mesh.cells'", "[100000, 100000, 100000]", "tets"],
+    );
+    // i64::MAX (the largest TOML integer): the estimate is in floating point and cannot wrap.
+    let o = isochor_in_64_mib(&["run", "ball-drop", "--set", "res=9223372036854775807"]);
+    refused(&o, &["key 'mesh.res'", "bytes"]);
+    let o = isochor_in_64_mib(&[
+        "run",
+        "cantilever",
+        "--set",
+        "element=tet10",
+        "--set",
+        "res=400",
+    ]);
+    refused(&o, &["key 'mesh.res'", "tet10"]);
+    for (scene, set, key) in [
+        ("cantilever", "steps=1000000000000", "stepping.steps"),
+        ("cantilever", "steps=10000000", "stepping.steps"),
+        ("dynamic-cube", "frames=1000000000000", "stepping.frames"),
+        ("cantilever", "every=10000000", "output.every"),
+    ] {
+        let o = isochor_in_64_mib(&["run", scene, "--set", set]);
+        refused(&o, &[key, "limit of 1000000"]);
+    }
+    // A float where a count is expected is a type error, not a huge count.
+    let o = isochor(&["run", "dynamic-cube", "--set", "frames=1e12"]);
+    refused(&o, &["stepping", "floating point"]);
+    let o = isochor(&["show", "cantilever", "--set", "res=1000000"]);
+    refused(&o, &["key 'mesh.res'"]);
+}
+
+#[test]
+fn a_mesh_file_is_sized_by_its_header() {
+    let dir = scratch("header");
+    let mesh = dir.join("huge.msh");
+    std::fs::write(
+        &mesh,
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n100000000000\n1 0 0 0\n$EndNodes\n\
+         $Elements\n600000000000\n",
+    )
+    .unwrap();
+    let o = isochor_in_64_mib(&[
+        "run",
+        "cantilever",
+        "--set",
+        &format!("mesh={}", mesh.display()),
+    ]);
+    refused(&o, &["key 'mesh.path'", "huge.msh", "tets"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn non_finite_numbers_are_refused_naming_the_key() {
+    for (set, key, what) in [
+        ("gravity=[0,nan,0]", "loads.gravity[1]", "NaN"),
+        ("gravity=[0, -inf, 0]", "loads.gravity[1]", "-inf"),
+        ("mesh.max=[0.2, inf, 0.05]", "mesh.max[1]", "inf"),
+        ("nu=nan", "material.nu", "NaN"),
+    ] {
+        let o = isochor(&["run", "cantilever", "--set", set]);
+        refused(&o, &[&format!("key '{key}'"), what]);
+    }
+    let dir = scratch("nan");
+    let scene = dir.join("nan.toml");
+    let text = isochor(&["show", "resting-block"]).stdout;
+    let text = String::from_utf8(text).unwrap()
+        + "\n[selections.probe]\nsphere = { center = [0.0, nan, 0.0], radius = 1.0 }\n";
+    std::fs::write(&scene, text).unwrap();
+    let o = isochor(&["run", scene.to_str().unwrap()]);
+    refused(&o, &["key 'selections.probe.sphere.center[1]'", "NaN"]);
+    let o = isochor(&[
+        "run",
+        "resting-block",
+        "--set",
+        "obstacles.0.normal=[0, 0, inf]",
+    ]);
+    refused(&o, &["key 'obstacles[0].normal[2]'"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn alternative_and_repeated_keys_conflict() {
+    for sets in [
+        ["mu=1e4", "E=3e4"],
+        ["E=3e4", "young=3e4"],
+        ["rho=1000", "density=1000"],
+        ["nu=0.3", "material.nu=0.4"],
+    ] {
+        let mut args = vec!["run", "cantilever"];
+        for s in &sets {
+            args.extend(["--set", s]);
+        }
+        refused(
+            &isochor(&args),
+            &["conflicts with --set", "give each parameter once"],
+        );
+    }
+    let o = isochor(&["run", "cantilever", "--set", "mu=1e4", "--set", "E=3e4"]);
+    refused(&o, &["--set E", "--set mu", "alternatives"]);
+    // In a scene file, too.
+    let o = isochor(&["show", "cantilever", "--set", "material.mu=1e4"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let dir = scratch("both");
+    let scene = dir.join("both.toml");
+    let text = String::from_utf8(isochor(&["show", "cantilever"]).stdout).unwrap();
+    std::fs::write(&scene, text.replace("young = ", "mu = 1e4\nyoung = ")).unwrap();
+    refused(
+        &isochor(&["run", scene.to_str().unwrap()]),
+        &["material", "not both"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A cube under gravity with the given Dirichlet conditions (TOML) and stepping.
+fn unsupported_cube(dir: &Path, dirichlet: &str, stepping: &str) -> PathBuf {
+    let path = dir.join("cube.toml");
+    std::fs::write(
+        &path,
+        format!(
+            r#"name = "cube"
+method = "standard"
+[mesh]
+generator = "box"
+min = [0.0, 0.0, 0.0]
+max = [1.0, 1.0, 1.0]
+res = 2
+[material]
+young = 1e5
+nu = 0.3
+[selections.corner]
+vertices = [0]
+[selections.bottom]
+plane = {{ point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }}
+{dirichlet}
+[loads]
+gravity = [0.0, 0.0, -9.8]
+[stepping]
+{stepping}
+"#
+        ),
+    )
+    .unwrap();
+    path
+}
+
+#[test]
+fn a_quasi_static_body_must_be_held() {
+    let dir = scratch("supports");
+    let quasi = "mode = \"quasi-static\"\nsteps = 1";
+    for (dirichlet, free) in [
+        ("", "6 of its 6"),
+        ("[[dirichlet]]\nselection = \"corner\"", "3 of its 6"),
+        (
+            "[[dirichlet]]\nselection = \"bottom\"\naxes = \"z\"",
+            "3 of its 6",
+        ),
+    ] {
+        let scene = unsupported_cube(&dir, dirichlet, quasi);
+        let o = isochor(&["run", scene.to_str().unwrap()]);
+        refused(
+            &o,
+            &["key 'dirichlet'", free, "rigid motions", "dynamic stepping"],
+        );
+    }
+    let scene = unsupported_cube(&dir, "[[dirichlet]]\nselection = \"bottom\"", quasi);
+    let o = isochor(&["run", scene.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // Dynamics need no support: the body falls.
+    let scene = unsupported_cube(&dir, "", "mode = \"dynamic\"\ndt = 0.01\nframes = 2");
+    let o = isochor(&["run", scene.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_obstacle_inside_the_body_at_the_start_is_refused() {
+    // The ground through the middle of the resting block.
+    let o = isochor(&[
+        "run",
+        "resting-block",
+        "--set",
+        "obstacles.0.point=[0.0, 0.0, 0.05]",
+    ]);
+    refused(
+        &o,
+        &["key 'obstacles[0]'", "half-space", "nodes lie inside it"],
+    );
+    // A sphere wholly inside the cantilever, which the boundary vertices would never meet.
+    let dir = scratch("obstacle");
+    let scene = dir.join("inside.toml");
+    let text = String::from_utf8(isochor(&["show", "cantilever"]).stdout).unwrap();
+    let text = text
+        + "\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, -1.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
+           \n[[obstacles]]\nshape = \"sphere\"\ncenter = [0.1, 0.025, 0.025]\nradius = 0.02\n";
+    std::fs::write(&scene, text).unwrap();
+    let o = isochor(&["run", scene.to_str().unwrap()]);
+    refused(&o, &["key 'obstacles[1]'", "sphere", "1 of its 81 nodes"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_builtin_scenes_with_obstacles_start_clear_of_them() {
+    let names = String::from_utf8(isochor(&["list"]).stdout).unwrap();
+    let mut with_obstacles = 0;
+    for name in names.lines() {
+        let shown = String::from_utf8(isochor(&["show", name]).stdout).unwrap();
+        if !shown.contains("[[obstacles]]") {
+            continue;
+        }
+        with_obstacles += 1;
+        let mut args = vec!["run", name, "--json"];
+        let reduced = isochor_scenes::builtin::reduced(name).unwrap();
+        for s in reduced {
+            args.extend(["--set", s]);
+        }
+        let o = isochor(&args);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+    }
+    assert!(with_obstacles >= 3, "{names}");
+}
+
+#[test]
+fn a_killed_runs_temporary_folder_is_removed_by_the_next_run() {
+    let dir = scratch("stale");
+    let out = dir.join("out");
+    let temp = dir.join(".out.tmp");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_isochor"))
+        .args(["run", "dynamic-cube", "--set", "res=4", "--out"])
+        .arg(&out)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !temp.join("frame_00000.vtu").exists() {
+        assert!(
+            start.elapsed().as_secs() < 60,
+            "no temporary output appeared"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(temp.exists() && !out.exists());
+    let o = isochor(&["run", "two-tets", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(out.join("summary.json").is_file());
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, ["out"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn paths_that_do_not_exist_or_are_folders_say_so() {
+    let dir = scratch("paths");
+    let missing = dir.join("no-such.toml");
+    let o = isochor(&["run", missing.to_str().unwrap()]);
+    let err = refused(&o, &["no-such.toml", "no such scene file"]);
+    assert!(!err.contains("not a built-in scene"), "{err}");
+    let o = isochor(&["run", "sub/scene"]);
+    refused(&o, &["sub/scene", "no such scene file"]);
+    let o = isochor(&["run", "cantilevr"]);
+    refused(&o, &["not a built-in scene", "cantilever"]);
+    let o = isochor(&["run", dir.to_str().unwrap()]);
+    refused(&o, &["is a directory, not a scene file"]);
+    let folder = dir.join("mesh.msh");
+    std::fs::create_dir(&folder).unwrap();
+    for mesh in [&folder, &dir] {
+        let o = isochor(&[
+            "run",
+            "cantilever",
+            "--set",
+            &format!("mesh={}", mesh.display()),
+        ]);
+        refused(&o, &["is a directory, not a mesh file"]);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn long_tokens_and_binary_bytes_are_not_echoed_raw() {
+    let dir = scratch("tokens");
+    let long = "x".repeat(300);
+    let o = isochor(&["run", &long]);
+    let err = refused(&o, &["... (300 characters)"]);
+    assert!(err.len() < 1000, "{err}");
+    let mesh = dir.join("long.msh");
+    std::fs::write(
+        &mesh,
+        format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 {long} 0\n$EndNodes\n"),
+    )
+    .unwrap();
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        &format!("mesh={}", mesh.display()),
+    ]);
+    let err = refused(&o, &["long.msh:6", "y coordinate", "... (300 characters)"]);
+    assert!(err.len() < 400, "{err}");
+    let garbage = dir.join("garbage.msh");
+    let bytes: Vec<u8> = (0..2000u32).map(|i| (i * 7919 % 256) as u8).collect();
+    std::fs::write(&garbage, bytes).unwrap();
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        &format!("mesh={}", garbage.display()),
+    ]);
+    refused(&o, &["garbage.msh:1", "\\u{"]);
+    assert!(
+        o.stderr
+            .iter()
+            .all(|&b| b == b'\n' || (b' '..=b'~').contains(&b) || b >= 0x80),
+        "control bytes echoed: {:?}",
+        stderr(&o)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn mesh_errors_name_the_files_own_tags() {
+    let dir = scratch("tags");
+    let mesh = dir.join("flat.msh");
+    // Element 42 over nodes 10, 20, 30, 40, the last in the plane of the others.
+    std::fs::write(
+        &mesh,
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 1 1 0\n\
+         $EndNodes\n$Elements\n1\n42 4 2 1 1 10 20 30 40\n$EndElements\n",
+    )
+    .unwrap();
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        &format!("mesh={}", mesh.display()),
+    ]);
+    refused(
+        &o,
+        &[
+            "flat.msh:13",
+            "tet 42 is degenerate",
+            "numbered as in the file",
+        ],
+    );
+    std::fs::write(
+        &mesh,
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n\
+         $EndNodes\n$Elements\n1\n42 4 2 1 1 10 20 30 30\n$EndElements\n",
+    )
+    .unwrap();
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        &format!("mesh={}", mesh.display()),
+    ]);
+    refused(
+        &o,
+        &["tet 42: vertex 30 appears more than once in [10, 20, 30, 30]"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
