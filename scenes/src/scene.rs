@@ -475,7 +475,7 @@ pub enum SteppingSpec {
     /// steps; `"fixed"` takes one solve per frame and stops at the first failure.
     QuasiStatic {
         steps: usize,
-        /// `"adaptive"` (default) or `"fixed"` (a string checked by [`Scene::validate`], so
+        /// `"adaptive"` (default) or `"fixed"` (a string checked when the scene is loaded, so
         /// that a bad value names its key).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         increments: Option<String>,
