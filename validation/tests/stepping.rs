@@ -190,3 +190,77 @@ fn a_resumed_run_equals_the_uninterrupted_one_bit_for_bit() {
         eprintln!("{scene}: resumed after step {at}, equal bit for bit");
     }
 }
+
+/// An indenter (a prescribed motion) that squeezes the puck by half the run and releases it
+/// by its end: at half the run the puck stores the plain indentation's energy, at the end it
+/// is back at rest.
+#[test]
+fn an_indenter_squeezes_and_releases() {
+    let plain = run("bulge-puck", Some("zonal"), &["res=2"]);
+    assert_converged(&plain, "bulge puck");
+    let r = run(
+        "bulge-puck",
+        Some("zonal"),
+        &[
+            "res=2",
+            "steps=2",
+            "dirichlet.1.curve=[[0.0, 0.0], [0.5, 1.0], [1.0, 0.0]]",
+        ],
+    );
+    assert_converged(&r, "bulge puck squeezed and released");
+    let half = r
+        .history
+        .iter()
+        .find(|s| s.t == 0.5)
+        .expect("a frame at 0.5");
+    let plain_energy = plain.history.last().unwrap().elastic_energy;
+    let end = r.history.last().unwrap();
+    eprintln!(
+        "elastic energy: plain {plain_energy:e}, at half {:e}, at the end {:e}; bulge at the end {:e} (plain {:e})",
+        half.elastic_energy,
+        end.elastic_energy,
+        probe(&r, "bulge_height"),
+        probe(&plain, "bulge_height")
+    );
+    assert!((half.elastic_energy - plain_energy).abs() <= 1e-6 * plain_energy);
+    assert!(end.elastic_energy.abs() <= 1e-9 * plain_energy);
+    assert!(probe(&r, "bulge_height").abs() <= 1e-9 * probe(&plain, "bulge_height").abs());
+}
+
+/// The ground (an obstacle) raised 1 cm by half the run and lowered back, under full gravity
+/// throughout (a constant gravity curve): at half the run the block rests 1 cm higher in the
+/// plain resting shape, at the end it is back in it (both to the contact tolerance).
+#[test]
+fn an_obstacle_moves_out_and_back() {
+    let positions_at = |sets: &[&str]| {
+        let b = built("resting-block", sets);
+        let mut sim = Simulation::new(b.problem, b.settings).unwrap();
+        let mut frames = Vec::new();
+        sim.run(b.stepping, |frame| {
+            if frame.frame.is_some() {
+                frames.push(frame.state.positions.clone());
+            }
+        })
+        .unwrap();
+        frames
+    };
+    let gravity = "loads.gravity_curve=[[0.0, 1.0]]";
+    let plain = positions_at(&["steps=1", gravity]).pop().unwrap();
+    let moved = positions_at(&[
+        "steps=2",
+        gravity,
+        "obstacles.0.translate=[0.0, 0.0, 0.01]",
+        "obstacles.0.curve=[[0.0, 0.0], [0.5, 1.0], [1.0, 0.0]]",
+    ]);
+    let lift = isochor_mesh::Vec3::new(0.0, 0.0, 0.01);
+    let off = |a: &[isochor_mesh::Vec3], shift: isochor_mesh::Vec3| {
+        a.iter()
+            .zip(&plain)
+            .map(|(x, p)| (x - p - shift).norm())
+            .fold(0.0, f64::max)
+    };
+    let (half, end) = (off(&moved[0], lift), off(&moved[1], lift * 0.0));
+    eprintln!("largest distance from the plain resting shape: at half (lifted) {half:e} m, at the end {end:e} m");
+    // The contact tolerance: 1e-6 of the bounding-box diagonal (0.17 m).
+    assert!(half <= 2e-7 && end <= 2e-7, "{half} {end}");
+}
