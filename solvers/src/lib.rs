@@ -24,6 +24,9 @@ mod simulation;
 pub mod terms;
 
 pub use error::SolverError;
+/// How [`Material::nodal_compliance`] integrates the nodal compliance (re-exported so that a
+/// `Material` can be written without depending on `isochor-constraints`).
+pub use isochor_constraints::NodalCompliance;
 pub use model::{
     Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, Method, Motion, Obstacle,
     Problem, ScheduledLoad, Shape, ZonalEnergy,
