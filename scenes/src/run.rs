@@ -3,7 +3,7 @@
 //! stepping API.
 
 use crate::checkpoint::RunCheckpoint;
-use crate::output::{write_run_outputs, FrameWriter, OutputDir};
+use crate::output::{write_run_outputs, FrameFields, FrameWriter, OutputDir};
 use crate::probes::{self, ProbeInput};
 use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
 use crate::scene::Scene;
@@ -106,6 +106,7 @@ fn execute(
 
     let total = scene.num_steps();
     let stepping = built.stepping;
+    let dynamic = scene.is_dynamic();
     let mut sim = Simulation::new(built.problem, built.settings)?;
     let dofs = sim.num_dofs();
     let mut frames = match (&out, scene.output.vtu) {
@@ -113,7 +114,7 @@ fn execute(
             let encoding = scene.output.vtu_encoding.resolve(mesh.num_nodes());
             let mut w =
                 FrameWriter::new(dir.path(), "frame", scene.output.every, encoding, zone_ids);
-            w.write(&mesh, 0, 0.0, mesh.nodes(), &zeros, &[])?;
+            w.write(&mesh, 0, 0.0, &FrameFields::rest(&mesh))?;
             Some(w)
         }
         _ => None,
@@ -151,10 +152,18 @@ fn execute(
         }
         if let Some(w) = frames.as_mut() {
             if let Some(index) = frame.frame.filter(|&k| w.wants(k, total)) {
-                let x = &frame.state.positions;
-                let p = &frame.tet_pressures;
-                let f = &frame.contact_forces;
-                if let Err(e) = w.write(&mesh, index, frame.state.t, x, p, f) {
+                let fields = FrameFields {
+                    positions: &frame.state.positions,
+                    velocities: if dynamic {
+                        &frame.state.velocities
+                    } else {
+                        &[]
+                    },
+                    tet_pressures: &frame.tet_pressures,
+                    von_mises: &frame.von_mises,
+                    contact_forces: &frame.contact_forces,
+                };
+                if let Err(e) = w.write(&mesh, index, frame.state.t, &fields) {
                     write_error = Some(e);
                 }
             }

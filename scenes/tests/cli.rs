@@ -465,3 +465,55 @@ fn a_killed_run_resumes_to_the_uninterrupted_result() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Frames carry the von Mises stress (every scene) and the velocity (dynamic scenes): the
+/// velocity of the last frame is its displacement increment over `dt`.
+#[test]
+fn frames_carry_von_mises_stress_and_velocity() {
+    use isochor_mesh::io::{read_vtu_file, FieldValues};
+    let dir = scratch("fields");
+    let out = dir.join("out");
+    let o = isochor(&[
+        "run",
+        "dynamic-cube",
+        "--set",
+        "res=2",
+        "--set",
+        "frames=2",
+        "--set",
+        "every=1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let frame = |k: usize| read_vtu_file(out.join(format!("frame_{k:05}.vtu"))).unwrap();
+    let (one, two) = (frame(1), frame(2));
+    let vector = |f: &isochor_mesh::io::VtuFile, name: &str| match &f
+        .point_data
+        .iter()
+        .find(|d| d.name == name)
+        .unwrap()
+        .values
+    {
+        FieldValues::Vector(v) => v.clone(),
+        _ => panic!("{name} is not a vector field"),
+    };
+    let (u1, u2, v2) = (
+        vector(&one, "displacement"),
+        vector(&two, "displacement"),
+        vector(&two, "velocity"),
+    );
+    for ((a, b), v) in u1.iter().zip(&u2).zip(&v2) {
+        assert!((v - (b - a) / 0.008).norm() <= 1e-9 * (1.0 + v.norm()));
+    }
+    let Some(FieldValues::Scalar(vm)) = two
+        .cell_data
+        .iter()
+        .find(|d| d.name == "von_mises")
+        .map(|d| &d.values)
+    else {
+        panic!("no von_mises cell data");
+    };
+    assert!(vm.iter().all(|s| s.is_finite() && *s >= 0.0) && vm.iter().any(|s| *s > 0.0));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

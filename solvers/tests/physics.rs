@@ -203,3 +203,35 @@ fn free_fall_follows_the_discrete_implicit_euler_trajectory() {
         }
     }
 }
+
+/// The von Mises stress of an isochoric uniaxial stretch `F = diag(s, 1/sqrt(s), 1/sqrt(s))`
+/// is `mu (s^2 - 1/s)` for every method (the deviatoric Cauchy stress of the neo-Hookean
+/// energies, `mu dev(F F^T)` at `J = 1`; constraint pressures are hydrostatic), on every tet.
+#[test]
+fn von_mises_stress_of_an_isochoric_stretch() {
+    let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap();
+    let s: f64 = 1.3;
+    let f = nalgebra::Matrix3::from_diagonal(&Vec3::new(s, 1.0 / s.sqrt(), 1.0 / s.sqrt()));
+    for method in [Method::Standard, Method::MixedP1, Method::Zonal] {
+        let material = Material::from_young_poisson(1e5, 0.45, 1000.0).unwrap();
+        let problem = Problem {
+            mesh: mesh.clone().into(),
+            method,
+            material,
+            zones: None,
+            dirichlet: vec![],
+            loads: vec![],
+            obstacles: vec![],
+        };
+        let sim = Simulation::new(problem, Settings::default()).unwrap();
+        let mut state = sim.state().clone();
+        state.positions = mesh.positions().iter().map(|x| f * x).collect();
+        let expected = material.mu * (s * s - 1.0 / s);
+        for vm in sim.von_mises(&state) {
+            assert!(
+                (vm - expected).abs() <= 1e-12 * expected,
+                "{method}: {vm} vs {expected}"
+            );
+        }
+    }
+}

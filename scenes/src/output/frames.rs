@@ -1,10 +1,38 @@
-//! VTU frames (displacement, contact force, pressure, J, zone) and their `.pvd` collection, through the
-//! mesh crate's writers.
+//! VTU frames (displacement, velocity, contact force, pressure, von Mises stress, J, zone) and
+//! their `.pvd` collection, through the mesh crate's writers.
 
 use crate::SceneError;
 use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
 use isochor_mesh::{ElementMesh, Vec3};
 use std::path::{Path, PathBuf};
+
+/// The fields of one frame; the optional ones are left out of the file when empty.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameFields<'a> {
+    /// Node positions.
+    pub positions: &'a [Vec3],
+    /// Node velocities (dynamics; empty in quasi-static stepping).
+    pub velocities: &'a [Vec3],
+    /// Mean stress per element (see `Simulation::tet_pressures`; zeros if empty).
+    pub tet_pressures: &'a [f64],
+    /// Von Mises stress per element (optional).
+    pub von_mises: &'a [f64],
+    /// Contact force per node (optional).
+    pub contact_forces: &'a [Vec3],
+}
+
+impl<'a> FrameFields<'a> {
+    /// The rest state of `mesh`: its nodes, nothing else.
+    pub fn rest(mesh: &'a ElementMesh) -> Self {
+        FrameFields {
+            positions: mesh.nodes(),
+            velocities: &[],
+            tet_pressures: &[],
+            von_mises: &[],
+            contact_forces: &[],
+        }
+    }
+}
 
 /// Writes every `every`-th frame (and always the last) into a folder.
 #[derive(Debug)]
@@ -42,18 +70,22 @@ impl FrameWriter {
         index % self.every == 0 || index == total
     }
 
-    /// Writes frame `index` at time or load `t` (0 is the rest state), with the contact
-    /// force per node as point data if given (one per node). 10-node meshes are written as
-    /// VTK quadratic tetrahedra, which ParaView draws curved.
+    /// Writes frame `index` at time or load `t` (0 is the rest state). 10-node meshes are
+    /// written as VTK quadratic tetrahedra, which ParaView draws curved.
     pub fn write(
         &mut self,
         mesh: &ElementMesh,
         index: usize,
         t: f64,
-        positions: &[Vec3],
-        tet_pressures: &[f64],
-        contact_forces: &[Vec3],
+        fields: &FrameFields<'_>,
     ) -> Result<(), SceneError> {
+        let FrameFields {
+            positions,
+            velocities,
+            tet_pressures,
+            von_mises,
+            contact_forces,
+        } = *fields;
         let rest = mesh.nodes();
         let displacement: Vec<Vec3> = positions.iter().zip(rest).map(|(x, r)| x - r).collect();
         let j: Vec<f64> = mesh
@@ -68,10 +100,16 @@ impl FrameWriter {
             vec![0.0; mesh.num_elements()]
         };
         let mut cells = vec![Field::scalar("pressure", pressure), Field::scalar("J", j)];
+        if von_mises.len() == mesh.num_elements() {
+            cells.push(Field::scalar("von_mises", von_mises.to_vec()));
+        }
         if let Some(z) = &self.zone_ids {
             cells.push(Field::int("zone", z.clone()));
         }
         let mut points = vec![Field::vector("displacement", displacement)];
+        if velocities.len() == positions.len() {
+            points.push(Field::vector("velocity", velocities.to_vec()));
+        }
         if contact_forces.len() == positions.len() {
             points.push(Field::vector("contact_force", contact_forces.to_vec()));
         }

@@ -9,7 +9,7 @@ mod plots;
 
 pub use atomic::OutputDir;
 pub use csv::{write_iterations_csv, write_steps_csv};
-pub use frames::FrameWriter;
+pub use frames::{FrameFields, FrameWriter};
 pub(crate) use plots::{finish_plot, plot_error, register_font};
 pub use plots::{plot_energy, plot_residuals};
 

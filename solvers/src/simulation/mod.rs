@@ -19,7 +19,7 @@ pub use stepper::{Adaptive, Progress, StepControl};
 
 use isochor_mesh::element::deformation_gradient;
 use isochor_mesh::{ElementMesh, Vec3};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, Matrix3};
 use std::time::{Duration, Instant};
 
 /// How time or load advances.
@@ -112,6 +112,8 @@ pub struct Frame<'a> {
     pub state: &'a State,
     /// Pressure per tet (see [`crate::Simulation::tet_pressures`]).
     pub tet_pressures: Vec<f64>,
+    /// Von Mises stress per tet (see [`crate::Simulation::von_mises`]).
+    pub von_mises: Vec<f64>,
     /// Energies of the state.
     pub energies: Energies,
     /// Tets with non-positive volume in this state.
@@ -455,6 +457,20 @@ impl Simulation {
             .collect()
     }
 
+    /// Von Mises stress `sqrt(3/2 s:s)` per element at its centroid, `s` the deviatoric
+    /// Cauchy stress (NaN where the energy is undefined). The hydrostatic constraint
+    /// pressures do not enter it, so it is the same for every method's stress.
+    pub fn von_mises(&self, state: &State) -> Vec<f64> {
+        (0..self.model.mesh.num_elements())
+            .map(|e| {
+                material_stress(&self.model, e, &state.positions).map_or(f64::NAN, |s| {
+                    let dev = s - Matrix3::identity() * (s.trace() / 3.0);
+                    (1.5 * dev.norm_squared()).sqrt()
+                })
+            })
+            .collect()
+    }
+
     /// The contact multipliers (normal force per vertex and obstacle, never negative),
     /// boundary-vertex-major over the obstacles; empty without obstacles.
     pub fn contact_multipliers(&self) -> Vec<f64> {
@@ -698,6 +714,7 @@ impl Simulation {
                 progress,
                 state: &self.state,
                 tet_pressures: self.tet_pressures(&self.state),
+                von_mises: self.von_mises(&self.state),
                 energies: self.energies(&self.state),
                 inverted_tets: inverted,
                 contact_forces: contact
@@ -746,16 +763,20 @@ fn step_target(model: &Model, level: LoadLevel, force_tolerance: f64) -> StepTar
     }
 }
 
-/// Mean Cauchy stress `tr(P F^T) / (3 J)` of the model's material at the centroid of element
-/// `e` (NaN where the energy is undefined).
-fn mean_stress(model: &Model, e: usize, x: &[Vec3]) -> f64 {
+/// Cauchy stress `P F^T / J` of the model's material energy at the centroid of element `e`
+/// (`None` where the energy is undefined). The constraint pressures of the mixed and zonal
+/// methods add only a hydrostatic part.
+fn material_stress(model: &Model, e: usize, x: &[Vec3]) -> Option<Matrix3<f64>> {
     let f = deformation_gradient(x, model.mesh.element(e), model.centroids.gradients(e, 0));
     let j = f.determinant();
-    model
-        .elastic_material
-        .pk1(&f)
-        .map(|p| (p * f.transpose()).trace() / (3.0 * j))
-        .unwrap_or(f64::NAN)
+    let p = model.elastic_material.pk1(&f).ok()?;
+    Some(p * f.transpose() / j)
+}
+
+/// Mean Cauchy stress `tr(sigma) / 3` of the model's material at the centroid of element `e`
+/// (NaN where the energy is undefined).
+fn mean_stress(model: &Model, e: usize, x: &[Vec3]) -> f64 {
+    material_stress(model, e, x).map_or(f64::NAN, |s| s.trace() / 3.0)
 }
 
 fn check_settings(s: &Settings) -> Result<(), SolverError> {
