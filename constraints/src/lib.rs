@@ -31,7 +31,7 @@ mod zonal;
 pub use constraint_set::{Compliance, ConstraintSet};
 pub use element::ElementConstraints;
 pub use error::ConstraintError;
-pub use matrix::{geometric_stiffness_matrix, jacobian_matrix};
+pub use matrix::{geometric_stiffness_matrix, jacobian_matrix, SparseMatrix};
 pub use measure::Measure;
 pub use nodal::{NodalCompliance, NodalConstraints};
 pub use zonal::ZonalConstraints;

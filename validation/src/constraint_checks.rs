@@ -3,7 +3,9 @@
 //! 10-node meshes.
 
 use crate::fd;
-use isochor_constraints::{geometric_stiffness_matrix, jacobian_matrix, ConstraintSet};
+use isochor_constraints::{
+    geometric_stiffness_matrix, jacobian_matrix, ConstraintSet, SparseMatrix,
+};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, DVector};
 
@@ -21,12 +23,14 @@ pub fn unflatten(q: &DVector<f64>) -> Vec<Vec3> {
 }
 
 /// A dense matrix of `shape` from sparse `(value, (row, col))` entries, duplicates summed.
-fn dense<'a>(
-    shape: (usize, usize),
-    entries: impl Iterator<Item = (&'a f64, (usize, usize))>,
-) -> DMatrix<f64> {
-    let mut d = DMatrix::zeros(shape.0, shape.1);
-    entries.for_each(|(&v, (i, j))| d[(i, j)] += v);
+fn dense(a: &SparseMatrix) -> DMatrix<f64> {
+    let a = a.as_ref();
+    let mut d = DMatrix::zeros(a.nrows(), a.ncols());
+    for c in 0..a.ncols() {
+        for (r, v) in a.row_idx_of_col(c).zip(a.val_of_col(c)) {
+            d[(r, c)] += v;
+        }
+    }
     d
 }
 
@@ -40,14 +44,12 @@ pub fn values(set: &dyn ConstraintSet, x: &[Vec3]) -> DVector<f64> {
 
 /// The Jacobian `G` at `x`, dense.
 pub fn jacobian(set: &dyn ConstraintSet, x: &[Vec3]) -> DMatrix<f64> {
-    let g = jacobian_matrix(set, x).expect("constraint Jacobian");
-    dense(g.shape(), g.iter())
+    dense(&jacobian_matrix(set, x).expect("constraint Jacobian"))
 }
 
 /// The geometric stiffness `K_g` at `x` and multipliers `p`, dense.
 pub fn geometric_stiffness(set: &dyn ConstraintSet, x: &[Vec3], p: &[f64]) -> DMatrix<f64> {
-    let k = geometric_stiffness_matrix(set, x, p).expect("geometric stiffness");
-    dense(k.shape(), k.iter())
+    dense(&geometric_stiffness_matrix(set, x, p).expect("geometric stiffness"))
 }
 
 /// Relative errors of a set's derivatives at `x` with multipliers `p` (the first
