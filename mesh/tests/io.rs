@@ -3,9 +3,9 @@
 use isochor_mesh::element::TetElement;
 use isochor_mesh::generate::{box_grid, cylinder, cylinder_surface, tube_surface};
 use isochor_mesh::io::{
-    read_gmsh, read_gmsh_elements, read_mesh, read_mesh_elements, read_tetgen, read_vtu,
-    read_vtu_elements, read_vtu_file, write_pvd, write_vtu, write_vtu_elements, Field, FieldValues,
-    VtuEncoding,
+    read_gmsh, read_gmsh_elements, read_gmsh_with_groups, read_mesh, read_mesh_elements,
+    read_tetgen, read_vtu, read_vtu_elements, read_vtu_file, write_pvd, write_vtu,
+    write_vtu_elements, Field, FieldValues, VtuEncoding,
 };
 use isochor_mesh::{ElementMesh, MeshError, Vec3};
 use std::f64::consts::PI;
@@ -685,5 +685,162 @@ fn vtu_round_trip_of_curved_ten_node_tets() {
     let back = read_mesh_elements(&linear).unwrap();
     assert_eq!(back.kind(), TetElement::Tet4);
     assert_eq!(back.connectivity(), mesh.corners().tets().as_flattened());
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The sorted corners of each face, sorted: a face set independent of listing order.
+fn face_set(faces: &[[usize; 3]]) -> Vec<[usize; 3]> {
+    let mut set: Vec<[usize; 3]> = faces
+        .iter()
+        .map(|f| {
+            let mut f = *f;
+            f.sort_unstable();
+            f
+        })
+        .collect();
+    set.sort_unstable();
+    set
+}
+
+/// Every face of `faces` is a boundary face of `mesh`.
+fn on_boundary(mesh: &ElementMesh, faces: &[[usize; 3]]) -> bool {
+    let boundary = face_set(mesh.corners().boundary().unwrap().triangles());
+    face_set(faces)
+        .iter()
+        .all(|f| boundary.binary_search(f).is_ok())
+}
+
+#[test]
+fn gmsh_physical_groups_read_identically_from_both_formats() {
+    for stem in ["unit-cube", "cylinder"] {
+        let (m22, g22) = read_gmsh_with_groups(data(&format!("{stem}-v22.msh"))).unwrap();
+        let (m41, g41) = read_gmsh_with_groups(data(&format!("{stem}-v41.msh"))).unwrap();
+        assert_eq!(m22.nodes(), m41.nodes(), "{stem}");
+        assert_eq!(
+            g22.keys().collect::<Vec<_>>(),
+            ["body", "boundary"],
+            "{stem}"
+        );
+        assert_eq!(
+            g41.keys().collect::<Vec<_>>(),
+            ["body", "boundary"],
+            "{stem}"
+        );
+        for key in ["body", "boundary"] {
+            let (a, b) = (g22.get(key).unwrap(), g41.get(key).unwrap());
+            assert_eq!((a.dimension, a.tag, &a.name), (b.dimension, b.tag, &b.name));
+            assert_eq!(face_set(&a.faces), face_set(&b.faces), "{stem} {key}");
+            assert_eq!(a.tets, b.tets, "{stem} {key}");
+        }
+        // "boundary" (surface 2) is the whole closed boundary; "body" (volume 1) every tet.
+        let boundary = g22.get("boundary").unwrap();
+        assert_eq!(boundary.dimension, 2);
+        assert!(boundary.tets.is_empty());
+        assert_eq!(
+            face_set(&boundary.faces),
+            face_set(m22.corners().boundary().unwrap().triangles())
+        );
+        let body = g22.get("body").unwrap();
+        assert_eq!((body.dimension, body.tag), (3, 1));
+        assert_eq!(body.tets, (0..m22.num_elements()).collect::<Vec<_>>());
+        assert!(body.faces.is_empty());
+    }
+}
+
+/// Counts per group as Gmsh reports them: format 4.1 takes an element block's groups from
+/// its entity in `$Entities`. The tube's faces are 6-node triangles, read by their corners;
+/// `bilayer-v41.msh` is a 0.06 x 0.02 x 0.012 block of two volume groups (a soft body over
+/// a stiff layer 2 mm thick) with two named surface groups: `clamped` is the whole x = 0 end,
+/// two surface entities (28 faces on the layer, 68 on the body) that both carry its tag.
+#[test]
+fn gmsh_physical_groups_match_gmsh_counts() {
+    let (tube, groups) = read_gmsh_with_groups(data("tube-tet10-v41.msh")).unwrap();
+    let count = |g: &isochor_mesh::io::PhysicalGroups, key: &str| {
+        let g = g.get(key).unwrap();
+        g.faces.len() + g.tets.len()
+    };
+    for (key, n) in [
+        ("inner", 502),
+        ("outer", 784),
+        ("bottom", 111),
+        ("top", 111),
+    ] {
+        assert_eq!(count(&groups, key), n, "{key}");
+        assert!(on_boundary(&tube, &groups.get(key).unwrap().faces), "{key}");
+    }
+    assert_eq!(count(&groups, "tube"), 2257);
+    let x = tube.nodes();
+    assert!(groups
+        .get("bottom")
+        .unwrap()
+        .faces
+        .iter()
+        .flatten()
+        .all(|&v| x[v].z.abs() < 1e-12));
+    let (bilayer, groups) = read_gmsh_with_groups(data("bilayer-v41.msh")).unwrap();
+    assert_eq!(
+        groups.keys().collect::<Vec<_>>(),
+        ["clamped", "soft", "stiff layer", "top"]
+    );
+    for (key, n) in [
+        ("clamped", 96),
+        ("top", 326),
+        ("soft", 2508),
+        ("stiff layer", 1151),
+    ] {
+        assert_eq!(count(&groups, key), n, "{key}");
+    }
+    let clamped = &groups.get("clamped").unwrap().faces;
+    assert!(on_boundary(&bilayer, clamped));
+    let x = bilayer.nodes();
+    let boundary = bilayer.corners().boundary().unwrap();
+    let at_x0 = |f: &[usize; 3]| f.iter().all(|&v| x[v].x.abs() < 1e-12);
+    let end = boundary.triangles().iter().filter(|f| at_x0(f)).count();
+    assert!(clamped.iter().all(at_x0) && clamped.len() == end);
+    let stiff = &groups.get("stiff layer").unwrap().tets;
+    assert!(stiff
+        .iter()
+        .all(|&e| bilayer.element(e).iter().all(|&v| x[v].z <= 0.002 + 1e-9)));
+}
+
+#[test]
+fn gmsh_physical_groups_unnamed_and_damaged() {
+    let dir = scratch("gmsh-groups");
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        fs::write(&path, text).unwrap();
+        path
+    };
+    // One tet (physical 5, unnamed) and a triangle (physical 7 and a name), format 2.2.
+    let v22 =
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 7 \"lid\"\n$EndPhysicalNames\n\
+        $Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n\
+        $Elements\n2\n1 2 2 7 1 1 2 3\n2 4 2 5 1 1 2 3 4\n$EndElements\n";
+    let (_, groups) = read_gmsh_with_groups(write("a.msh", v22)).unwrap();
+    assert_eq!(groups.keys().collect::<Vec<_>>(), ["5", "lid"]);
+    assert_eq!(groups.get("lid").unwrap().faces, [[0, 1, 2]]);
+    assert_eq!(groups.get("5").unwrap().tets, [0]);
+    // An unnamed surface and volume group of the same tag are told apart by dimension.
+    let (_, groups) = read_gmsh_with_groups(write(
+        "b.msh",
+        &v22.replace("2 5 1 1 2 3 4", "2 7 1 1 2 3 4")
+            .replace("\"lid\"", "\"x\"")
+            .replace("2 7 \"x\"", "1 7 \"x\""),
+    ))
+    .unwrap();
+    assert_eq!(groups.keys().collect::<Vec<_>>(), ["2:7", "3:7"]);
+    // A triangle on a node no tet uses, and an unquoted name, are named at their line.
+    let path = write(
+        "c.msh",
+        &v22.replace("4\n1 0 0 0", "5\n9 5 5 5\n1 0 0 0")
+            .replace("1 2 2 7 1 1 2 3", "1 2 2 7 1 1 2 9"),
+    );
+    let (line, m) = parse_error(read_gmsh_with_groups(&path), &path);
+    assert_eq!(line, 18);
+    assert!(m.contains("triangle node 9 of physical group 7"), "{m}");
+    let path = write("d.msh", &v22.replace("\"lid\"", "lid"));
+    let (line, m) = parse_error(read_gmsh_with_groups(&path), &path);
+    assert_eq!(line, 6);
+    assert!(m.contains("quoted group name"), "{m}");
     fs::remove_dir_all(&dir).unwrap();
 }

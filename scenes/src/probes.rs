@@ -34,7 +34,7 @@ pub fn evaluate(
     scene: &Scene,
     input: &ProbeInput<'_>,
 ) -> Result<BTreeMap<String, f64>, SceneError> {
-    let selections = Selections::new(input.mesh, &scene.selections)?;
+    let selections = Selections::new(input.mesh, &scene.mesh, &scene.selections)?;
     scene
         .probes
         .iter()

@@ -35,7 +35,7 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
     crate::limits::check_memory(scene, &format!("scene {}", scene.name))?;
     let mesh = build_mesh(&scene.mesh, scene.element())?;
     let material = build_material(&scene.material)?;
-    let selections = Selections::new(&mesh, &scene.selections)?;
+    let selections = Selections::new(&mesh, &scene.mesh, &scene.selections)?;
     let dirichlet = scene
         .dirichlet
         .iter()

@@ -244,8 +244,8 @@ pub enum ZonalEnergyName {
     Standard,
 }
 
-/// A region of space given by the intersection of the listed primitives (all must hold).
-/// Used as a vertex set (Dirichlet, displacement probes), a boundary-face set (tractions,
+/// A region of space given by the intersection of the listed primitives (all must hold),
+/// optionally within a Gmsh physical group (`physical`). Used as a vertex set (Dirichlet, displacement probes), a boundary-face set (tractions,
 /// pressure: faces whose three vertices are inside) or a tet set (centroid inside).
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -269,6 +269,10 @@ pub struct SelectionSpec {
     pub all: bool,
     /// Explicit vertex indices (only for generated meshes whose numbering is known).
     pub vertices: Option<Vec<usize>>,
+    /// A Gmsh physical group of the mesh file, by name (or by number if unnamed): a surface
+    /// group selects its triangles and their vertices, a volume group its tets and their
+    /// vertices (with `surface`, its tets' boundary faces and their vertices).
+    pub physical: Option<String>,
     /// Geometric tolerance (default: 1e-6 times the mesh's bounding-box diagonal).
     pub tolerance: Option<f64>,
 }
@@ -767,11 +771,12 @@ impl Scene {
                 || s.half_space.is_some()
                 || s.radial.is_some()
                 || s.sphere.is_some()
-                || s.vertices.is_some();
+                || s.vertices.is_some()
+                || s.physical.is_some();
             if !(has_region || s.all || s.surface) {
                 return Err(bad(
                     &key,
-                    "a selection needs at least one of box, plane, half_space, radial, sphere, vertices, surface, all".into(),
+                    "a selection needs at least one of box, plane, half_space, radial, sphere, vertices, physical, surface, all".into(),
                 ));
             }
             if let Some(t) = s.tolerance {

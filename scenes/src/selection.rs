@@ -1,15 +1,17 @@
 //! Scene selections resolved on a mesh: a [`SelectionSpec`] becomes an
 //! [`isochor_mesh::Region`] (the intersection of its primitives, padded by a tolerance), which
 //! then selects nodes (vertices, and on a 10-node mesh the mid-edge nodes inside), boundary
-//! faces (all three corners inside) or elements (corner centroid inside). Everything is
-//! geometric, so a selection applies to any mesh of the same shape and element.
+//! faces (all three corners inside) or elements (corner centroid inside). A geometric
+//! selection applies to any mesh of the same shape and element; a `physical` one takes a
+//! Gmsh physical group of the mesh file (then cut by the region, if one is given).
 
-use crate::scene::SelectionSpec;
+use crate::scene::{MeshSpec, SelectionSpec};
 use crate::SceneError;
+use isochor_mesh::io::{read_gmsh_with_groups, PhysicalGroup, PhysicalGroups};
 use isochor_mesh::{
     BoundarySurface, ElementMesh, FaceSelection, Region, TetMesh, Vec3, VertexSelection,
 };
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// The selections of a scene on one mesh, with the boundary surface they share.
 pub struct Selections<'a> {
@@ -18,22 +20,56 @@ pub struct Selections<'a> {
     specs: &'a BTreeMap<String, SelectionSpec>,
     surface: BoundarySurface,
     default_tolerance: f64,
+    /// The physical groups of a Gmsh mesh file, read if a selection names one.
+    groups: Option<PhysicalGroups>,
+    /// What the mesh is, for errors about physical groups.
+    source: String,
+}
+
+/// What a physical group selects on the mesh: vertices (sorted), outward boundary faces,
+/// tets, and whether it selects a surface.
+struct Physical {
+    vertices: Vec<usize>,
+    faces: Vec<[usize; 3]>,
+    tets: Vec<usize>,
+    surface: bool,
+    /// Triangles of a surface group that are not boundary faces (an internal surface).
+    off_boundary: usize,
 }
 
 impl<'a> Selections<'a> {
-    /// Prepares the selections of `specs` on `elements`.
+    /// Prepares the selections of `specs` on `elements`, built from `source` (whose Gmsh
+    /// physical groups are read if a selection names one).
     pub fn new(
         elements: &'a ElementMesh,
+        source: &MeshSpec,
         specs: &'a BTreeMap<String, SelectionSpec>,
     ) -> Result<Self, SceneError> {
         let mesh = elements.corners();
         let (lo, hi) = mesh.bounding_box();
+        let wanted = specs.values().any(|s| s.physical.is_some());
+        let (groups, source) = match source {
+            MeshSpec::File { path } => {
+                let gmsh = path
+                    .extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("msh"));
+                let groups = if wanted && gmsh {
+                    Some(read_gmsh_with_groups(path)?.1)
+                } else {
+                    None
+                };
+                (groups, format!("the mesh file {}", path.display()))
+            }
+            _ => (None, "a generated mesh".to_string()),
+        };
         Ok(Selections {
             elements,
             mesh,
             specs,
             surface: mesh.boundary()?,
             default_tolerance: 1e-6 * (hi - lo).norm(),
+            groups,
+            source,
         })
     }
 
@@ -59,6 +95,100 @@ impl<'a> Selections<'a> {
         })
     }
 
+    /// What the selection's physical group selects, if it names one.
+    fn physical(&self, name: &str) -> Result<Option<Physical>, SceneError> {
+        let spec = self.spec(name)?;
+        let Some(key) = &spec.physical else {
+            return Ok(None);
+        };
+        let error = |message: String| SceneError::Selection {
+            name: name.to_string(),
+            message,
+        };
+        let Some(groups) = &self.groups else {
+            return Err(error(format!(
+                "physical = \"{key}\" needs a Gmsh .msh mesh file, but the scene's mesh is {}",
+                self.source
+            )));
+        };
+        let Some(group) = groups.get(key) else {
+            let keys: Vec<&str> = groups.keys().collect();
+            return Err(error(if keys.is_empty() {
+                format!(
+                    "no physical group \"{key}\": {} has no physical surface or volume groups",
+                    self.source
+                )
+            } else {
+                format!(
+                    "no physical group \"{key}\" in {} (groups: {})",
+                    self.source,
+                    keys.join(", ")
+                )
+            }));
+        };
+        self.resolve(group, spec.surface)
+            .map(Some)
+            .map_err(|m| error(format!("physical group \"{key}\" {m}")))
+    }
+
+    /// The vertices, boundary faces and tets of a physical group on this mesh.
+    fn resolve(&self, group: &PhysicalGroup, surface: bool) -> Result<Physical, String> {
+        let (nv, ne) = (self.mesh.num_vertices(), self.mesh.num_tets());
+        if group.faces.iter().flatten().any(|&v| v >= nv) || group.tets.iter().any(|&e| e >= ne) {
+            return Err("does not match the mesh (read the same file)".into());
+        }
+        let sorted = |f: &[usize; 3]| {
+            let mut f = *f;
+            f.sort_unstable();
+            f
+        };
+        let triangles = self.surface.triangles();
+        let boundary: HashMap<[usize; 3], usize> = triangles
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (sorted(f), i))
+            .collect();
+        let mut off_boundary = 0;
+        let (faces, tets): (Vec<[usize; 3]>, Vec<usize>) = if group.dimension == 2 {
+            let faces = group
+                .faces
+                .iter()
+                .filter_map(|f| {
+                    let face = boundary.get(&sorted(f)).map(|&i| triangles[i]);
+                    off_boundary += usize::from(face.is_none());
+                    face
+                })
+                .collect();
+            (faces, Vec::new())
+        } else {
+            let mut inside = vec![false; ne];
+            group.tets.iter().for_each(|&e| inside[e] = true);
+            let faces = triangles
+                .iter()
+                .zip(self.surface.owner_tets())
+                .filter(|&(_, &e)| inside[e])
+                .map(|(f, _)| *f)
+                .collect();
+            (faces, group.tets.clone())
+        };
+        let mut vertices: Vec<usize> = if group.dimension == 2 {
+            group.faces.iter().flatten().copied().collect()
+        } else if surface {
+            faces.iter().flatten().copied().collect()
+        } else {
+            tets.iter().flat_map(|&e| self.mesh.tets()[e]).collect()
+        };
+        vertices.sort_unstable();
+        vertices.dedup();
+        Ok(Physical {
+            vertices,
+            faces,
+            tets,
+            surface: surface || group.dimension == 2,
+            off_boundary,
+        })
+    }
+
     fn empty(name: &str, what: &str) -> SceneError {
         SceneError::Selection {
             name: name.to_string(),
@@ -76,7 +206,8 @@ impl<'a> Selections<'a> {
         let nv = self.mesh.num_vertices();
         let mut selected = vec![false; nv];
         vertices.iter().for_each(|&v| selected[v] = true);
-        let on_surface = if self.spec(name)?.surface && !self.elements.mid_edges().is_empty() {
+        let surface = self.spec(name)?.surface || self.physical(name)?.is_some_and(|p| p.surface);
+        let on_surface = if surface && !self.elements.mid_edges().is_empty() {
             Some(self.elements.boundary()?.nodes())
         } else {
             None
@@ -104,7 +235,12 @@ impl<'a> Selections<'a> {
     pub fn vertices(&self, name: &str) -> Result<Vec<usize>, SceneError> {
         let spec = self.spec(name)?;
         let region = self.region(name)?;
-        let mut vertices = if spec.surface {
+        let mut vertices = if let Some(physical) = self.physical(name)? {
+            let x = self.mesh.positions();
+            let mut v = physical.vertices;
+            v.retain(|&v| region.contains(&x[v]));
+            v
+        } else if spec.surface {
             VertexSelection::surface_from_region(name, self.mesh, &self.surface, &region).vertices
         } else {
             VertexSelection::from_region(name, self.mesh, &region).vertices
@@ -129,7 +265,23 @@ impl<'a> Selections<'a> {
     pub fn faces(&self, name: &str) -> Result<Vec<[usize; 3]>, SceneError> {
         let spec = self.spec(name)?;
         let region = self.region(name)?;
-        let mut faces = FaceSelection::from_region(name, self.mesh, &self.surface, &region).faces;
+        let mut faces = if let Some(physical) = self.physical(name)? {
+            if physical.off_boundary > 0 {
+                return Err(SceneError::Selection {
+                    name: name.to_string(),
+                    message: format!(
+                        "{} triangles of its physical group are not boundary faces of the mesh (loads act on the boundary)",
+                        physical.off_boundary
+                    ),
+                });
+            }
+            let x = self.mesh.positions();
+            let mut f = physical.faces;
+            f.retain(|f| f.iter().all(|&v| region.contains(&x[v])));
+            f
+        } else {
+            FaceSelection::from_region(name, self.mesh, &self.surface, &region).faces
+        };
         if let Some(explicit) = &spec.vertices {
             faces.retain(|f| f.iter().all(|v| explicit.contains(v)));
         }
@@ -139,10 +291,22 @@ impl<'a> Selections<'a> {
         Ok(faces)
     }
 
-    /// The tets whose rest centroid lies in the selection (never empty).
+    /// The tets whose rest centroid lies in the selection (never empty); of a physical
+    /// selection, those of its volume group.
     pub fn tets(&self, name: &str) -> Result<Vec<usize>, SceneError> {
         let region = self.region(name)?;
-        let tets: Vec<usize> = (0..self.mesh.num_tets())
+        let candidates = match self.physical(name)? {
+            Some(p) if p.surface && p.tets.is_empty() => {
+                return Err(SceneError::Selection {
+                    name: name.to_string(),
+                    message: "its physical group is a surface group: it selects no tets (name a volume group)".into(),
+                })
+            }
+            Some(p) => p.tets,
+            None => (0..self.mesh.num_tets()).collect(),
+        };
+        let tets: Vec<usize> = candidates
+            .into_iter()
             .filter(|&e| region.contains(&self.mesh.centroid(e)))
             .collect();
         if tets.is_empty() {
@@ -215,6 +379,13 @@ mod tests {
     use crate::scene::{BoxSpec, PlaneSpec, RadialSpec};
     use isochor_mesh::generate::box_grid;
 
+    fn generated() -> MeshSpec {
+        MeshSpec::Explicit {
+            positions: Vec::new(),
+            tets: Vec::new(),
+        }
+    }
+
     fn specs() -> BTreeMap<String, SelectionSpec> {
         let mut m = BTreeMap::new();
         m.insert(
@@ -261,7 +432,7 @@ mod tests {
         let mesh =
             ElementMesh::linear(box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap());
         let specs = specs();
-        let s = Selections::new(&mesh, &specs).unwrap();
+        let s = Selections::new(&mesh, &generated(), &specs).unwrap();
         assert_eq!(s.vertices("left").unwrap().len(), 9);
         assert_eq!(s.nodes("left").unwrap(), s.vertices("left").unwrap());
         assert_eq!(s.faces("left").unwrap().len(), 8);
@@ -286,7 +457,7 @@ mod tests {
         let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap();
         let mesh = ElementMesh::quadratic(mesh);
         let specs = specs();
-        let s = Selections::new(&mesh, &specs).unwrap();
+        let s = Selections::new(&mesh, &generated(), &specs).unwrap();
         let left = s.nodes("left").unwrap();
         assert_eq!(left.len(), 25);
         assert!(left.iter().all(|&n| mesh.nodes()[n].x.abs() < 1e-12));

@@ -3,12 +3,17 @@
 //! triangles (3- and 6-node, types 2 and 9) and quads are skipped, since the boundary faces
 //! follow from the tets ([`crate::ElementMesh::boundary`]); other volume elements, and files
 //! mixing 4- and 10-node tets, are rejected.
+//!
+//! [`read_gmsh_with_groups`] also reads the physical groups of surfaces and volumes: their
+//! names (`$PhysicalNames`), their triangles (3- and 6-node, by their corners) and tets. An
+//! element's groups are the first tag of its line in format 2.2, and the physical tags of its
+//! entity (`$Entities`) in format 4.1.
 
 use super::text::{excerpt, Fields, Lines};
 use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
 use crate::{ElementMesh, MeshError, TetMesh, Vec3};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 /// Reads a Gmsh ASCII mesh (format 2.x or 4.1) of 4-node tets. Vertices that no tetrahedron
@@ -17,7 +22,7 @@ use std::path::Path;
 /// [`read_gmsh_elements`].
 pub fn read_gmsh(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
     let path = path.as_ref();
-    let (nodes, cells) = parse(path, &read_text(path)?)?;
+    let (nodes, cells, _) = parse(path, &read_text(path)?)?;
     linear(path, nodes, cells)
 }
 
@@ -40,8 +45,168 @@ fn linear(path: &Path, nodes: FileNodes, cells: Cells) -> Result<TetMesh, MeshEr
 /// mid-edge nodes). A bad element is reported at its line.
 pub fn read_gmsh_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshError> {
     let path = path.as_ref();
-    let (nodes, cells) = parse(path, &read_text(path)?)?;
+    let (nodes, cells, _) = parse(path, &read_text(path)?)?;
     assemble(path, nodes, cells)
+}
+
+/// Reads a Gmsh mesh like [`read_gmsh_elements`] with its physical groups of dimension 2
+/// (surfaces) and 3 (volumes), their vertices numbered as the mesh's. Fails at its line on a
+/// triangle with a node that is no tet's corner.
+pub fn read_gmsh_with_groups(
+    path: impl AsRef<Path>,
+) -> Result<(ElementMesh, PhysicalGroups), MeshError> {
+    let path = path.as_ref();
+    let (nodes, cells, raw) = parse(path, &read_text(path)?)?;
+    // The mesh numbers the tets' corners first, in file order (see `ElementMesh::from_nodes`).
+    let n = cells.kind.num_nodes();
+    let mut vertex = vec![None; nodes.positions.len()];
+    for element in cells.connectivity.chunks_exact(n) {
+        for &i in &element[..4] {
+            vertex[i] = Some(0);
+        }
+    }
+    for (count, v) in vertex.iter_mut().flatten().enumerate() {
+        *v = count;
+    }
+    let mut groups = Vec::new();
+    for ((dimension, tag), group) in raw.groups {
+        let name = raw.names.get(&(dimension, tag)).cloned();
+        let faces = group
+            .faces
+            .iter()
+            .map(|(face, line)| {
+                face.iter()
+                    .map(|&i| {
+                        vertex[i].ok_or_else(|| {
+                            MeshError::parse(
+                                path,
+                                *line,
+                                format!(
+                                    "triangle node {} of physical group {tag} is not a corner of any tetrahedron",
+                                    nodes.tags[i]
+                                ),
+                            )
+                        })
+                    })
+                    .collect::<Result<Vec<_>, _>>()
+                    .map(|v| [v[0], v[1], v[2]])
+            })
+            .collect::<Result<_, _>>()?;
+        groups.push(PhysicalGroup {
+            dimension,
+            tag,
+            name,
+            faces,
+            tets: group.tets,
+        });
+    }
+    let mesh = assemble(path, nodes, cells)?;
+    Ok((mesh, PhysicalGroups::new(groups)))
+}
+
+/// One physical group of surfaces (dimension 2) or volumes (dimension 3).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PhysicalGroup {
+    /// 2 for a surface group, 3 for a volume group.
+    pub dimension: usize,
+    /// The group's number in the file.
+    pub tag: i64,
+    /// Its name in `$PhysicalNames`, if any.
+    pub name: Option<String>,
+    /// Its triangles, as corner vertex indices of the mesh, as listed in the file.
+    pub faces: Vec<[usize; 3]>,
+    /// Its tets, as element indices of the mesh.
+    pub tets: Vec<usize>,
+}
+
+/// The physical groups of a Gmsh file, by key: a group's name, or for an unnamed group its
+/// tag (`"7"`); when two groups would share a key (a surface and a volume group of the same
+/// name or tag), both keys are prefixed with the dimension (`"2:7"`, `"3:7"`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PhysicalGroups {
+    groups: BTreeMap<String, PhysicalGroup>,
+}
+
+impl PhysicalGroups {
+    fn new(groups: Vec<PhysicalGroup>) -> Self {
+        let key = |g: &PhysicalGroup| g.name.clone().unwrap_or_else(|| g.tag.to_string());
+        let mut uses = HashMap::new();
+        for g in &groups {
+            *uses.entry(key(g)).or_insert(0) += 1;
+        }
+        let groups = groups
+            .into_iter()
+            .map(|g| {
+                let k = key(&g);
+                let k = if uses[&k] > 1 {
+                    format!("{}:{k}", g.dimension)
+                } else {
+                    k
+                };
+                (k, g)
+            })
+            .collect();
+        PhysicalGroups { groups }
+    }
+
+    /// The group of `key`.
+    pub fn get(&self, key: &str) -> Option<&PhysicalGroup> {
+        self.groups.get(key)
+    }
+
+    /// The keys of all groups, sorted.
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.groups.keys().map(String::as_str)
+    }
+
+    /// The groups with their keys, sorted by key.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, &PhysicalGroup)> {
+        self.groups.iter().map(|(k, g)| (k.as_str(), g))
+    }
+
+    /// Number of groups.
+    pub fn len(&self) -> usize {
+        self.groups.len()
+    }
+
+    /// Whether the file has no physical group of surfaces or volumes.
+    pub fn is_empty(&self) -> bool {
+        self.groups.is_empty()
+    }
+}
+
+/// The elements of one physical group as read: triangles (file node indices, line) and tets.
+#[derive(Default)]
+struct RawGroup {
+    faces: Vec<([usize; 3], usize)>,
+    tets: Vec<usize>,
+}
+
+/// Physical groups as read: names and elements by `(dimension, tag)`, and (format 4.1) the
+/// physical tags of each `(dimension, entity tag)`.
+#[derive(Default)]
+struct RawGroups {
+    names: HashMap<(usize, i64), String>,
+    groups: BTreeMap<(usize, i64), RawGroup>,
+    entities: HashMap<(usize, i64), Vec<i64>>,
+}
+
+impl RawGroups {
+    /// Records a triangle (file node indices of its corners) read at `line` in the groups
+    /// `tags` (0 = none).
+    fn add_face(&mut self, tags: &[i64], face: [usize; 3], line: usize) {
+        for &tag in tags.iter().filter(|&&t| t != 0) {
+            let group = self.groups.entry((2, tag)).or_default();
+            group.faces.push((face, line));
+        }
+    }
+
+    /// Records tet `tet` in the groups `tags` (0 = none).
+    fn add_tet(&mut self, tags: &[i64], tet: usize) {
+        for &tag in tags.iter().filter(|&&t| t != 0) {
+            self.groups.entry((3, tag)).or_default().tets.push(tet);
+        }
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -76,11 +241,12 @@ impl Nodes {
     }
 }
 
-fn parse(path: &Path, text: &str) -> Result<(FileNodes, Cells), MeshError> {
+fn parse(path: &Path, text: &str) -> Result<(FileNodes, Cells, RawGroups), MeshError> {
     let mut lines = Lines::new(path, text, None);
     let mut version = None;
     let mut nodes: Option<Nodes> = None;
     let mut cells: Option<Cells> = None;
+    let mut groups = RawGroups::default();
     while let Some((line, header)) = lines.next_line() {
         if !header.starts_with('$') {
             return Err(lines.error(
@@ -102,11 +268,17 @@ fn parse(path: &Path, text: &str) -> Result<(FileNodes, Cells), MeshError> {
                 let Some(nodes) = &nodes else {
                     return Err(lines.error(line, "$Elements must come after $Nodes"));
                 };
-                cells = Some(read_elements(&mut lines, v, nodes)?);
+                cells = Some(read_elements(&mut lines, v, nodes, &mut groups)?);
             }
+            ("PhysicalNames", _) => read_physical_names(&mut lines, &mut groups)?,
+            ("Entities", Some(Version::V41)) => read_entities(&mut lines, &mut groups)?,
             _ => skip_section(&mut lines, name)?,
         }
-        if !matches!(name, "MeshFormat" | "Nodes" | "Elements") {
+        if !matches!(
+            name,
+            "MeshFormat" | "Nodes" | "Elements" | "PhysicalNames" | "Entities"
+        ) || (name == "Entities" && version == Some(Version::V2))
+        {
             continue;
         }
         let end = format!("$End{name}");
@@ -125,7 +297,74 @@ fn parse(path: &Path, text: &str) -> Result<(FileNodes, Cells), MeshError> {
         positions: nodes.positions,
         tags: nodes.tags,
     };
-    Ok((nodes, cells))
+    Ok((nodes, cells, groups))
+}
+
+/// `$PhysicalNames`: `count`, then `dimension tag "name"` per line. Names of surface and
+/// volume groups are kept (and their groups listed even if empty).
+fn read_physical_names(lines: &mut Lines, groups: &mut RawGroups) -> Result<(), MeshError> {
+    let count = lines
+        .data("the number of physical names")?
+        .usize("the number of physical names")?;
+    for i in 0..count {
+        let what = format!(
+            "physical name {} of {count} (`dimension tag \"name\"`)",
+            i + 1
+        );
+        let mut f = lines.data(&what)?;
+        let dimension = f.usize("the dimension of the physical group")?;
+        let tag = f.i64("the tag of the physical group")?;
+        let text = f.text;
+        let name = match (text.find('"'), text.rfind('"')) {
+            (Some(a), Some(b)) if a < b => &text[a + 1..b],
+            _ => {
+                return Err(f.error(format!(
+                    "expected a quoted group name, found `{}`",
+                    excerpt(text)
+                )))
+            }
+        };
+        if matches!(dimension, 2 | 3) {
+            groups.names.insert((dimension, tag), name.to_string());
+            groups.groups.entry((dimension, tag)).or_default();
+        }
+    }
+    Ok(())
+}
+
+/// `$Entities` of format 4.1: the physical tags of every entity. Points are
+/// `tag x y z numPhysicalTags tags...`; curves, surfaces and volumes are
+/// `tag minX minY minZ maxX maxY maxZ numPhysicalTags tags... numBounding tags...`.
+fn read_entities(lines: &mut Lines, groups: &mut RawGroups) -> Result<(), MeshError> {
+    let mut h = lines.data("`numPoints numCurves numSurfaces numVolumes`")?;
+    let counts = [
+        h.usize("numPoints")?,
+        h.usize("numCurves")?,
+        h.usize("numSurfaces")?,
+        h.usize("numVolumes")?,
+    ];
+    h.end("the four entity counts")?;
+    for (dimension, &count) in counts.iter().enumerate() {
+        for _ in 0..count {
+            let mut f = lines.data("an entity line `tag bounding-box numPhysicalTags tags...`")?;
+            let tag = f.i64("entity tag")?;
+            let coordinates = if dimension == 0 { 3 } else { 6 };
+            for _ in 0..coordinates {
+                f.f64("bounding box coordinate")?;
+            }
+            let n = f.usize("numPhysicalTags")?;
+            let physical = (0..n)
+                .map(|_| f.i64("physical tag"))
+                .collect::<Result<Vec<_>, _>>()?;
+            if dimension > 0 {
+                let bounding = f.usize("numBoundingEntities")?;
+                f.skip(bounding, "bounding entity tag")?;
+            }
+            f.end("the entity")?;
+            groups.entities.insert((dimension, tag), physical);
+        }
+    }
+    Ok(())
 }
 
 /// `version file-type data-size`: ASCII 2.x or 4.1 only.
@@ -309,8 +548,49 @@ fn read_tet(
     Ok(())
 }
 
-fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<Cells, MeshError> {
+/// Number of nodes of a Gmsh triangle type (3-node type 2, 6-node type 9).
+fn triangle_nodes(kind: usize) -> Option<usize> {
+    match kind {
+        2 => Some(3),
+        9 => Some(6),
+        _ => None,
+    }
+}
+
+/// The corners (file node indices) of an `n`-node triangle's remaining fields.
+fn read_triangle(f: &mut Fields, n: usize, nodes: &Nodes) -> Result<[usize; 3], MeshError> {
+    let mut corners = [0; 3];
+    for a in 0..n {
+        let tag = f.usize(&format!("node {} of the {n}-node triangle", a + 1))?;
+        let index = nodes.get(tag, f)?;
+        if let Some(c) = corners.get_mut(a) {
+            *c = index;
+        }
+    }
+    f.end(&format!("the {n} nodes of the triangle"))?;
+    Ok(corners)
+}
+
+/// The physical tag of a format 2.2 element line (its first tag; 0 if it has none), after
+/// which the other tags are skipped.
+fn v2_physical_tag(f: &mut Fields) -> Result<i64, MeshError> {
+    let ntags = f.usize("number of tags")?;
+    if ntags == 0 {
+        return Ok(0);
+    }
+    let physical = f.i64("the physical tag")?;
+    f.skip(ntags - 1, "an element tag")?;
+    Ok(physical)
+}
+
+fn read_elements(
+    lines: &mut Lines,
+    version: Version,
+    nodes: &Nodes,
+    groups: &mut RawGroups,
+) -> Result<Cells, MeshError> {
     let mut cells = None;
+    let next_tet = |cells: &Option<Cells>| cells.as_ref().map_or(0, |c: &Cells| c.tags.len());
     match version {
         Version::V2 => {
             let count = lines
@@ -325,9 +605,14 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<C
                 let tag = f.usize("element tag")?;
                 let kind = f.usize("element type")?;
                 if let Some(tet) = tet_type(kind) {
-                    let ntags = f.usize("number of tags")?;
-                    f.skip(ntags, "an element tag")?;
+                    let physical = v2_physical_tag(&mut f)?;
+                    let index = next_tet(&cells);
                     read_tet(&mut f, tag, tet, nodes, &mut cells)?;
+                    groups.add_tet(&[physical], index);
+                } else if let Some(n) = triangle_nodes(kind) {
+                    let physical = v2_physical_tag(&mut f)?;
+                    let face = read_triangle(&mut f, n, nodes)?;
+                    groups.add_face(&[physical], face, f.line);
                 } else if !is_lower_dimensional(kind) {
                     return Err(reject(&f, kind));
                 }
@@ -341,18 +626,30 @@ fn read_elements(lines: &mut Lines, version: Version, nodes: &Nodes) -> Result<C
             for _ in 0..blocks {
                 let mut b = lines.data("`entityDim entityTag elementType numElementsInBlock`")?;
                 let dim = b.usize("entityDim")?;
-                b.i64("entityTag")?;
+                let entity = b.i64("entityTag")?;
                 let kind = b.usize("elementType")?;
                 let in_block = b.usize("numElementsInBlock")?;
                 let tet = tet_type(kind).filter(|_| dim == 3);
                 if dim == 3 && tet.is_none() {
                     return Err(reject(&b, kind));
                 }
+                let triangle = triangle_nodes(kind).filter(|_| dim == 2);
+                let physical = groups
+                    .entities
+                    .get(&(dim, entity))
+                    .cloned()
+                    .unwrap_or_default();
                 for _ in 0..in_block {
                     let mut f = lines.data("an element line `tag node...`")?;
                     if let Some(tet) = tet {
                         let tag = f.usize("element tag")?;
+                        let index = next_tet(&cells);
                         read_tet(&mut f, tag, tet, nodes, &mut cells)?;
+                        groups.add_tet(&physical, index);
+                    } else if let Some(n) = triangle {
+                        f.usize("element tag")?;
+                        let face = read_triangle(&mut f, n, nodes)?;
+                        groups.add_face(&physical, face, f.line);
                     }
                 }
                 seen = seen.saturating_add(in_block);
@@ -379,7 +676,7 @@ mod tests {
 
     fn read(text: &str) -> Result<TetMesh, MeshError> {
         let path = Path::new("t.msh");
-        let (nodes, cells) = parse(path, text)?;
+        let (nodes, cells, _) = parse(path, text)?;
         linear(path, nodes, cells)
     }
 
@@ -473,7 +770,7 @@ mod tests {
     #[test]
     fn ten_node_v2_file_reads_reoriented() {
         let path = Path::new("t.msh");
-        let (nodes, cells) = parse(path, V2_TET10).unwrap();
+        let (nodes, cells, _) = parse(path, V2_TET10).unwrap();
         let mesh = assemble(path, nodes, cells).unwrap();
         assert_eq!(mesh.kind(), TetElement::Tet10);
         assert_eq!((mesh.num_vertices(), mesh.num_nodes()), (4, 10));
@@ -501,7 +798,7 @@ mod tests {
         let shared = shared
             .replace("3 4 2 1 1 12", "3 11 2 1 1 12")
             .replace("12 2 3 4\n", "12 2 3 4 1 23 13 14 24 34\n");
-        let (nodes, cells) = parse(path, &shared).unwrap();
+        let (nodes, cells, _) = parse(path, &shared).unwrap();
         match assemble(path, nodes, cells) {
             Err(MeshError::Parse { line, message, .. }) => {
                 assert_eq!(line, 20);
@@ -515,7 +812,7 @@ mod tests {
             other => panic!("expected a parse error, got {other:?}"),
         }
         let doubled = V2_TET10.replace("13 23 12 14 24 34", "13 23 12 14 23 34");
-        let (nodes, cells) = parse(path, &doubled).unwrap();
+        let (nodes, cells, _) = parse(path, &doubled).unwrap();
         match assemble(path, nodes, cells) {
             Err(MeshError::Parse { line, message, .. }) => {
                 assert_eq!(line, 20);

@@ -8,6 +8,9 @@
 //! order; [`read_mesh`] (and [`read_gmsh`], [`read_vtu`]) return the linear [`TetMesh`] of a
 //! linear file and refuse a quadratic one, naming the line or cell, rather than silently
 //! dropping its curved geometry (its corner mesh is `read_mesh_elements(path)?.corners()`).
+//!
+//! [`read_gmsh_with_groups`] also returns the Gmsh physical groups of surfaces and volumes
+//! ([`PhysicalGroups`]), numbered as the mesh.
 
 mod atomic;
 mod gmsh;
@@ -17,7 +20,9 @@ mod text;
 mod vtk_binary;
 mod vtu;
 
-pub use gmsh::{read_gmsh, read_gmsh_elements};
+pub use gmsh::{
+    read_gmsh, read_gmsh_elements, read_gmsh_with_groups, PhysicalGroup, PhysicalGroups,
+};
 pub use pvd::write_pvd;
 pub use tetgen::read_tetgen;
 pub use text::excerpt;
