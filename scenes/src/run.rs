@@ -169,12 +169,13 @@ fn execute(
             }
         }
         if let (Some(every), Some(dir)) = (options.checkpoint_every, out.as_ref()) {
+            let solver = frame.checkpoint();
             if frame.progress.steps % every == 0 {
                 let checkpoint = RunCheckpoint::new(
                     scene,
                     options,
                     false,
-                    &frame.checkpoint(),
+                    &solver,
                     history.clone(),
                     frames
                         .as_ref()
@@ -186,7 +187,7 @@ fn execute(
                     write_error = Some(e);
                 }
             }
-            last_solver = Some(frame.checkpoint());
+            last_solver = Some(solver);
         }
         bar.set_position(frame.progress.levels as u64);
         bar.set_message(format!(

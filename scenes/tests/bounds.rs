@@ -391,19 +391,27 @@ fn long_tokens_and_binary_bytes_are_not_echoed_raw() {
 fn mesh_errors_name_the_files_own_tags() {
     let dir = scratch("tags");
     let mesh = dir.join("flat.msh");
-    // Element 42 over nodes 10, 20, 30, 40, the last in the plane of the others.
-    std::fs::write(
-        &mesh,
-        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 1 1 0\n\
-         $EndNodes\n$Elements\n1\n42 4 2 1 1 10 20 30 40\n$EndElements\n",
-    )
-    .unwrap();
-    let o = isochor(&[
-        "run",
-        "cantilever",
-        "--set",
-        &format!("mesh={}", mesh.display()),
-    ]);
+    // Runs the cantilever on a Gmsh 2.2 file of nodes 10, 20, 30, 40 and element 42.
+    let run_on = |nodes: &str, element: &str| {
+        std::fs::write(
+            &mesh,
+            format!(
+                "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n{nodes}$EndNodes\n$Elements\n1\n{element}\n$EndElements\n"
+            ),
+        )
+        .unwrap();
+        isochor(&[
+            "run",
+            "cantilever",
+            "--set",
+            &format!("mesh={}", mesh.display()),
+        ])
+    };
+    // The last node in the plane of the others.
+    let o = run_on(
+        "10 0 0 0\n20 1 0 0\n30 0 1 0\n40 1 1 0\n",
+        "42 4 2 1 1 10 20 30 40",
+    );
     refused(
         &o,
         &[
@@ -412,18 +420,10 @@ fn mesh_errors_name_the_files_own_tags() {
             "numbered as in the file",
         ],
     );
-    std::fs::write(
-        &mesh,
-        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n\
-         $EndNodes\n$Elements\n1\n42 4 2 1 1 10 20 30 30\n$EndElements\n",
-    )
-    .unwrap();
-    let o = isochor(&[
-        "run",
-        "cantilever",
-        "--set",
-        &format!("mesh={}", mesh.display()),
-    ]);
+    let o = run_on(
+        "10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n",
+        "42 4 2 1 1 10 20 30 30",
+    );
     refused(
         &o,
         &["tet 42: vertex 30 appears more than once in [10, 20, 30, 30]"],

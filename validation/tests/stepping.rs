@@ -189,6 +189,13 @@ fn a_resumed_run_equals_the_uninterrupted_one_bit_for_bit() {
         );
         eprintln!("{scene}: resumed after step {at}, equal bit for bit");
     }
+    // A checkpoint that is not a run's (a zero increment would never advance) is refused.
+    let (_, mut bad) = run_with_checkpoint(built("cantilever", &["res=1", "steps=2"]), 1);
+    bad.progress.increment = 0.0;
+    let b = built("cantilever", &["res=1", "steps=2"]);
+    let mut sim = Simulation::new(b.problem, b.settings).unwrap();
+    let e = sim.restore(bad).unwrap_err().to_string();
+    assert!(e.contains("increment = 0"), "{e}");
 }
 
 /// An indenter (a prescribed motion) that squeezes the puck by half the run and releases it

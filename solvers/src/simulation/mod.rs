@@ -384,6 +384,16 @@ impl Simulation {
                 self.state.multipliers.len()
             )));
         }
+        if !(progress.increment > 0.0
+            && progress.increment.is_finite()
+            && progress.t.is_finite()
+            && progress.t >= 0.0)
+        {
+            return Err(SolverError::InvalidProblem(format!(
+                "the checkpoint's progress is not a run's: t = {}, increment = {}",
+                progress.t, progress.increment
+            )));
+        }
         if let Some(contact) = &self.model.contact {
             contact.set_multipliers(contact_multipliers)?;
         } else if !contact_multipliers.is_empty() {
