@@ -1,6 +1,6 @@
 //! Element (P0) volume constraints: one pressure per element (sec. 4.6 of Francu et al. 2021).
 
-use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements, Shapes};
+use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements, Shapes};
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
 use isochor_mesh::element::TetQuadrature;
 use isochor_mesh::{ElementMesh, TetMesh, Vec3};
@@ -19,7 +19,8 @@ use rayon::prelude::*;
 #[derive(Debug, Clone)]
 pub struct ElementConstraints {
     elements: MeasuredElements,
-    inverse_kappa: f64,
+    /// `1 / kappa_e` per element.
+    inverse_kappa: Vec<f64>,
 }
 
 impl ElementConstraints {
@@ -43,10 +44,24 @@ impl ElementConstraints {
         measure: Measure,
         kappa: f64,
     ) -> Result<Self, ConstraintError> {
-        let inverse_kappa = inverse_bulk_modulus(kappa)?;
+        Self::on_regions(mesh, rule, measure, &vec![kappa; mesh.num_elements()])
+    }
+
+    /// As [`ElementConstraints::on_elements`] with one bulk modulus per element (a body of
+    /// several materials): `C_e = V_e / kappa_e`.
+    ///
+    /// Errors: [`ConstraintError::InvalidParameter`] unless every `kappa > 0`;
+    /// [`ConstraintError::DimensionMismatch`] unless there is one per element.
+    pub fn on_regions(
+        mesh: &ElementMesh,
+        rule: TetQuadrature,
+        measure: Measure,
+        kappa: &[f64],
+    ) -> Result<Self, ConstraintError> {
+        let elements = MeasuredElements::new(mesh, rule, measure)?;
         Ok(ElementConstraints {
-            elements: MeasuredElements::new(mesh, rule, measure)?,
-            inverse_kappa,
+            inverse_kappa: inverse_bulk_moduli(kappa, &elements)?,
+            elements,
         })
     }
 
@@ -104,7 +119,7 @@ impl ConstraintSet for ElementConstraints {
     fn compliance(&self) -> Compliance {
         Compliance::Diagonal(
             (0..self.elements.len())
-                .map(|e| self.elements.rest_volume(e) * self.inverse_kappa)
+                .map(|e| self.elements.rest_volume(e) * self.inverse_kappa[e])
                 .collect(),
         )
     }

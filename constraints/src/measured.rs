@@ -396,6 +396,16 @@ pub(crate) fn check_len(
     }
 }
 
+/// `1 / kappa_e` for one bulk modulus per element (`kappa.len()` must be the number of
+/// elements), each checked by [`inverse_bulk_modulus`].
+pub(crate) fn inverse_bulk_moduli(
+    kappa: &[f64],
+    elements: &MeasuredElements,
+) -> Result<Vec<f64>, ConstraintError> {
+    check_len("kappa (one per element)", elements.len(), kappa.len())?;
+    kappa.iter().map(|&k| inverse_bulk_modulus(k)).collect()
+}
+
 /// `1 / kappa` for a bulk modulus `kappa > 0` (`f64::INFINITY` allowed: incompressible,
 /// giving exactly zero compliance).
 pub(crate) fn inverse_bulk_modulus(kappa: f64) -> Result<f64, ConstraintError> {

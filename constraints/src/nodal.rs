@@ -2,7 +2,7 @@
 //! functions (eq. 27 of Francu et al. 2021; on 10-node tets the Taylor-Hood P2-P1 pair), with
 //! consistent or lumped compliance (eq. 18).
 
-use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements, Shapes};
+use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements, Shapes};
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
 use isochor_mesh::element::TetQuadrature;
 use isochor_mesh::{ElementMesh, TetMesh, Vec3};
@@ -41,7 +41,8 @@ pub enum NodalCompliance {
 #[derive(Debug, Clone)]
 pub struct NodalConstraints {
     elements: MeasuredElements,
-    inverse_kappa: f64,
+    /// `1 / kappa_e` per element.
+    inverse_kappa: Vec<f64>,
     compliance: NodalCompliance,
 }
 
@@ -72,10 +73,31 @@ impl NodalConstraints {
         kappa: f64,
         compliance: NodalCompliance,
     ) -> Result<Self, ConstraintError> {
-        let inverse_kappa = inverse_bulk_modulus(kappa)?;
+        Self::on_regions(
+            mesh,
+            rule,
+            measure,
+            &vec![kappa; mesh.num_elements()],
+            compliance,
+        )
+    }
+
+    /// As [`NodalConstraints::on_elements`] with one bulk modulus per element (a body of
+    /// several materials): `C = integral (1/kappa) L^T L dV`.
+    ///
+    /// Errors: [`ConstraintError::InvalidParameter`] unless every `kappa > 0`;
+    /// [`ConstraintError::DimensionMismatch`] unless there is one per element.
+    pub fn on_regions(
+        mesh: &ElementMesh,
+        rule: TetQuadrature,
+        measure: Measure,
+        kappa: &[f64],
+        compliance: NodalCompliance,
+    ) -> Result<Self, ConstraintError> {
+        let elements = MeasuredElements::new(mesh, rule, measure)?;
         Ok(NodalConstraints {
-            elements: MeasuredElements::new(mesh, rule, measure)?,
-            inverse_kappa,
+            inverse_kappa: inverse_bulk_moduli(kappa, &elements)?,
+            elements,
             compliance,
         })
     }
@@ -162,14 +184,14 @@ impl ConstraintSet for NodalConstraints {
     }
 
     fn compliance(&self) -> Compliance {
-        let scale = self.inverse_kappa;
+        let scale = &self.inverse_kappa;
         match self.compliance {
             NodalCompliance::Lumped => {
                 let mut diagonal = vec![0.0; self.num_constraints()];
                 for e in 0..self.elements.len() {
                     let products = self.elements.corner_products(e);
                     for (v, row) in self.elements.corners(e).into_iter().zip(products) {
-                        diagonal[v] += row.iter().sum::<f64>() * scale;
+                        diagonal[v] += row.iter().sum::<f64>() * scale[e];
                     }
                 }
                 Compliance::Diagonal(diagonal)
@@ -180,7 +202,7 @@ impl ConstraintSet for NodalConstraints {
                         let t = self.elements.corners(e);
                         let products = self.elements.corner_products(e);
                         (0..4).flat_map(move |a| {
-                            (0..4).map(move |b| (t[a], t[b], products[a][b] * scale))
+                            (0..4).map(move |b| (t[a], t[b], products[a][b] * scale[e]))
                         })
                     })
                     .collect(),

@@ -6,6 +6,7 @@
 //! isochor resume DIR [--json]                    # continue an interrupted checkpointed run
 //! isochor compare SCENE --methods A,B,... [--set KEY=VALUE]... [--sweep KEY=V1,V2,...] [--out DIR] [--json]
 //! isochor show SCENE [--set KEY=VALUE]... [--variant NAME]   # the scene as TOML, to copy and edit
+//! isochor check SCENE [--set KEY=VALUE]... [--variant NAME] [--vtu FILE]  # validate, size selections and regions
 //! isochor study SCENE --methods A,B,... [--elements tet4,tet10] [--sweep res=1,2,4,8] [--probe NAME]
 //!               [--reference METHOD[/ELEMENT] | --reference-value VALUE [--reference-uncertainty REL]]
 //!               [--max-unknowns N] [--set KEY=VALUE]... [--out DIR]
@@ -139,6 +140,21 @@ pub enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Validate a scene without running it: print the size of each selection (vertices,
+    /// faces, tets) and the volume of each region; optionally write a VTU showing them.
+    Check {
+        /// Built-in scene name or path to a TOML scene file.
+        scene: String,
+        /// Override a parameter.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Apply one of the scene's named variants first.
+        #[arg(long, value_name = "NAME")]
+        variant: Option<String>,
+        /// Write the rest mesh with a field per selection and the region of every tet.
+        #[arg(long, value_name = "FILE")]
+        vtu: Option<PathBuf>,
+    },
     /// Print a scene as TOML (after a variant and overrides), to copy, edit and run by path.
     Show {
         /// Built-in scene name or path to a TOML scene file.
@@ -189,6 +205,21 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             let overrides = parse_overrides(&set)?;
             let scene = SceneSource::resolve(&scene)?.load(variant.as_deref(), &overrides)?;
             write!(stdout, "{}", scene.to_toml_string()).map_err(io)?;
+            Ok(0)
+        }
+        Command::Check {
+            scene,
+            set,
+            variant,
+            vtu,
+        } => {
+            let overrides = parse_overrides(&set)?;
+            let scene = SceneSource::resolve(&scene)?.load(variant.as_deref(), &overrides)?;
+            let report = crate::check::check_scene(&scene, vtu.as_deref())?;
+            write!(stdout, "{}", report.to_text()).map_err(io)?;
+            if let Some(path) = vtu {
+                writeln!(stdout, "wrote {}", path.display()).map_err(io)?;
+            }
             Ok(0)
         }
         Command::Run {

@@ -5,13 +5,14 @@
 //! Francu et al. 2021 and Sheen et al. 2021), problem construction ([`problem`]), probes
 //! ([`probes`]), bounds checked before allocating ([`limits`]), output writers ([`output`]:
 //! VTU frames, `summary.json`, CSV logs, PNG plots), checkpoints of long runs
-//! ([`checkpoint`]), method comparisons ([`compare`]) and the `isochor` command-line program
+//! ([`checkpoint`]), scene checks before a run ([`check`]), method comparisons ([`compare`]) and the `isochor` command-line program
 //! ([`cli`]).
 //!
 //! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
 //! [`RunResult`].
 
 pub mod builtin;
+pub mod check;
 pub mod checkpoint;
 mod checks;
 pub mod cli;

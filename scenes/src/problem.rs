@@ -13,7 +13,7 @@ use isochor_mesh::element::TetElement;
 use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3, Zones};
 use isochor_solvers::{
     Adaptive, Curve, Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion,
-    Obstacle, Problem, ScheduledLoad, Settings, Shape, StepControl, Stepping, ZonalEnergy,
+    Obstacle, Problem, Region, ScheduledLoad, Settings, Shape, StepControl, Stepping, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -36,6 +36,18 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
     let mesh = build_mesh(&scene.mesh, scene.element())?;
     let material = build_material(&scene.material)?;
     let selections = Selections::new(&mesh, &scene.mesh, &scene.selections)?;
+    let regions = scene
+        .regions
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            Ok(Region {
+                name: r.name.clone(),
+                elements: selections.tets(&r.selection)?,
+                material: region_material(&scene.material, &r.material, i)?,
+            })
+        })
+        .collect::<Result<Vec<_>, SceneError>>()?;
     let dirichlet = scene
         .dirichlet
         .iter()
@@ -91,6 +103,7 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
         mesh,
         method,
         material,
+        regions,
         zones,
         dirichlet,
         loads,
@@ -364,6 +377,31 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
     }
     m.validate()?;
     Ok(m)
+}
+
+/// The material of region `index`: the body's `[material]` keys overlaid with the region's.
+fn region_material(
+    body: &MaterialSpec,
+    overrides: &toml::Table,
+    index: usize,
+) -> Result<Material, SceneError> {
+    let origin = format!("regions.{index}.material");
+    let invalid = |key: String, message: String| SceneError::Invalid {
+        origin: "scene".into(),
+        key,
+        message,
+    };
+    let mut merged =
+        toml::Table::try_from(body).map_err(|e| invalid(origin.clone(), e.to_string()))?;
+    for (given, replaced) in [("young", "mu"), ("mu", "young")] {
+        if overrides.contains_key(given) {
+            merged.remove(replaced);
+        }
+    }
+    merged.extend(overrides.clone());
+    let spec: MaterialSpec = serde_path_to_error::deserialize(toml::Value::Table(merged))
+        .map_err(|e| invalid(format!("{origin}.{}", e.path()), e.inner().to_string()))?;
+    build_material(&spec).map_err(|e| invalid(origin, e.to_string()))
 }
 
 fn motion(spec: &MotionSpec) -> Motion {

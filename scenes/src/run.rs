@@ -112,8 +112,20 @@ fn execute(
     let mut frames = match (&out, scene.output.vtu) {
         (Some(dir), true) => {
             let encoding = scene.output.vtu_encoding.resolve(mesh.num_nodes());
-            let mut w =
-                FrameWriter::new(dir.path(), "frame", scene.output.every, encoding, zone_ids);
+            let region_ids = sim
+                .regions()
+                .element_regions()
+                .iter()
+                .map(|&r| r as i32)
+                .collect();
+            let mut w = FrameWriter::new(
+                dir.path(),
+                "frame",
+                scene.output.every,
+                encoding,
+                zone_ids,
+                region_ids,
+            );
             w.write(&mesh, 0, 0.0, &FrameFields::rest(&mesh))?;
             Some(w)
         }
@@ -161,6 +173,8 @@ fn execute(
                     },
                     tet_pressures: &frame.tet_pressures,
                     von_mises: &frame.von_mises,
+                    stress: &frame.stress,
+                    nodal_pressures: frame.nodal_pressures.as_deref().unwrap_or_default(),
                     contact_forces: &frame.contact_forces,
                 };
                 if let Err(e) = w.write(&mesh, index, frame.state.t, &fields) {

@@ -32,6 +32,10 @@ pub struct Scene {
     pub mesh: MeshSpec,
     /// Material parameters.
     pub material: MaterialSpec,
+    /// Parts of the body with their own material (`[[regions]]`), each the tets of a
+    /// selection; elements no region claims are made of `[material]`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub regions: Vec<RegionSpec>,
     /// Named geometric selections, referenced by boundary conditions, loads and probes.
     #[serde(default)]
     pub selections: BTreeMap<String, SelectionSpec>,
@@ -226,6 +230,20 @@ pub struct MaterialSpec {
 
 fn default_density() -> f64 {
     1000.0
+}
+
+/// A part of the body with its own material: the tets of a named selection (centroid inside
+/// its region, or the elements of a physical volume group).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    /// Name, for outputs and errors.
+    pub name: String,
+    /// The named selection (`[selections.NAME]`) whose tets form the region.
+    pub selection: String,
+    /// The keys of `[material]` that differ in this region (`young` replaces the body's `mu`
+    /// and the other way round); every other key is the body's.
+    pub material: toml::Table,
 }
 
 /// `kappa` choice.

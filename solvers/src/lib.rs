@@ -29,7 +29,7 @@ pub use error::SolverError;
 pub use isochor_constraints::NodalCompliance;
 pub use model::{
     Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, Method, Motion, Obstacle,
-    Problem, ScheduledLoad, Shape, ZonalEnergy,
+    Problem, Region, Regions, ScheduledLoad, Shape, ZonalEnergy,
 };
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{

@@ -31,6 +31,7 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
         mesh: mesh.into(),
         method,
         material: Material::from_young_poisson(266e3, nu, 1070.0).unwrap(),
+        regions: Vec::new(),
         zones: None,
         dirichlet: vec![Dirichlet {
             nodes: clamped,

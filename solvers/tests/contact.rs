@@ -101,6 +101,7 @@ fn resting_block_at(method: Method, nu: f64, z0: f64) -> Problem {
         mesh: mesh.into(),
         method,
         material: Material::from_young_poisson(100e3, nu, 1000.0).unwrap(),
+        regions: Vec::new(),
         zones: None,
         dirichlet: vec![Dirichlet {
             nodes: bottom,
@@ -219,6 +220,7 @@ fn receding_ground_releases_every_contact() {
         mesh: mesh.into(),
         method: Method::Standard,
         material: Material::from_young_poisson(100e3, 0.45, 1000.0).unwrap(),
+        regions: Vec::new(),
         zones: None,
         dirichlet: vec![Dirichlet {
             nodes: top,
@@ -266,6 +268,7 @@ fn dropped_ball(res: usize, method: Method, mu: f64, nu: f64, gap: f64) -> Probl
         mesh: mesh.into(),
         method,
         material: Material::from_young_poisson(young, nu, 1000.0).unwrap(),
+        regions: Vec::new(),
         zones: None,
         dirichlet: Vec::new(),
         loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
@@ -367,6 +370,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         mesh: mesh.into(),
         method: Method::MixedP1,
         material: Material::from_young_poisson(100e3, 0.5, 1000.0).unwrap(),
+        regions: Vec::new(),
         zones: None,
         dirichlet,
         loads: Vec::new(),

@@ -53,6 +53,7 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         mesh: mesh.into(),
         method: Method::Standard,
         material,
+        regions: Vec::new(),
         zones: None,
         obstacles: Vec::new(),
     };
@@ -218,6 +219,7 @@ fn von_mises_stress_of_an_isochoric_stretch() {
             mesh: mesh.clone().into(),
             method,
             material,
+            regions: Vec::new(),
             zones: None,
             dirichlet: vec![],
             loads: vec![],

@@ -52,6 +52,7 @@ fn problem(deformed: &Deformed, method: Method) -> Problem {
     Problem {
         method,
         material: Material::from_young_poisson(YOUNG, NU, 1000.0).expect("material"),
+        regions: Vec::new(),
         zones: None,
         dirichlet: vec![Dirichlet {
             nodes: clamped,

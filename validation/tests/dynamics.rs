@@ -62,6 +62,7 @@ fn cantilever(method: Method) -> Problem {
         loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
         method,
         material: Material::from_young_poisson(266e3, 0.45, DENSITY).expect("material"),
+        regions: Vec::new(),
         zones: None,
         obstacles: Vec::new(),
         mesh: mesh.into(),

@@ -48,6 +48,7 @@ fn problem(mesh: ElementMesh, method: Method, nu: f64, dirichlet: Vec<Dirichlet>
         mesh,
         method,
         material: Material::from_young_poisson(YOUNG, nu, 0.0).expect("material"),
+        regions: Vec::new(),
         zones: None,
         dirichlet,
         loads: Vec::new(),

@@ -15,19 +15,44 @@ impl ElementMesh {
     /// `integral N_a dV` for every node `a` (the element volumes' consistent split), by the
     /// degree-5 rule: exact on straight elements.
     pub fn node_volumes(&self) -> Vec<f64> {
-        self.split_volumes(|values| values.to_vec())
+        self.node_masses(&vec![1.0; self.num_elements()])
     }
 
     /// HRZ-lumped volumes of every node (see the module docs): positive, and adding up to
     /// the mesh volume.
     pub fn lumped_volumes(&self) -> Vec<f64> {
-        self.split_volumes(|values| values.iter().map(|v| v * v).collect())
+        self.lumped_masses(&vec![1.0; self.num_elements()])
     }
 
-    /// Splits every element's volume (by the degree-5 rule) among its nodes in proportion to
-    /// `integral f(N)_a dV`, `f` mapping the shape values at a point to one value per node;
-    /// `f(N) = N` is the consistent split itself, whose parts add up to the volume.
-    fn split_volumes(&self, f: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
+    /// `integral rho N_a dV` for every node `a`, with `density` the constant `rho` of each
+    /// element: the consistent split of the element masses (body forces of a body of several
+    /// materials).
+    ///
+    /// # Panics
+    /// If `density` does not hold one value per element.
+    pub fn node_masses(&self, density: &[f64]) -> Vec<f64> {
+        self.split_volumes(density, |values| values.to_vec())
+    }
+
+    /// HRZ-lumped masses of every node, with `density` the constant `rho` of each element:
+    /// positive, and adding up to the body's mass.
+    ///
+    /// # Panics
+    /// If `density` does not hold one value per element.
+    pub fn lumped_masses(&self, density: &[f64]) -> Vec<f64> {
+        self.split_volumes(density, |values| values.iter().map(|v| v * v).collect())
+    }
+
+    /// Splits every element's volume (by the degree-5 rule), times its `density`, among its
+    /// nodes in proportion to `integral f(N)_a dV`, `f` mapping the shape values at a point to
+    /// one value per node; `f(N) = N` is the consistent split itself, whose parts add up to
+    /// the volume.
+    fn split_volumes(&self, density: &[f64], f: impl Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
+        assert_eq!(
+            density.len(),
+            self.num_elements(),
+            "one density per element"
+        );
         let rest = self
             .rest_geometry(TetQuadrature::Degree5)
             .expect("constructors check det(dX/dxi) > 0 at the points of every rule");
@@ -43,7 +68,7 @@ impl ElementMesh {
                     *l += w * v;
                 }
             }
-            let scale = rest.element_volume(e) / local.iter().sum::<f64>();
+            let scale = density[e] * rest.element_volume(e) / local.iter().sum::<f64>();
             for (&a, l) in self.element(e).iter().zip(&local) {
                 out[a] += scale * l;
             }

@@ -9,6 +9,7 @@ use super::atomic::write_atomic;
 use super::vtk_binary::{append_compressed, decode_base64, Layout, Number, Scalar};
 use crate::element::TetElement;
 use crate::{ElementMesh, MeshError, TetMesh, Vec3};
+use nalgebra::Matrix3;
 use std::borrow::Cow;
 use std::io::{self, Write};
 use std::path::Path;
@@ -41,6 +42,8 @@ pub enum FieldValues {
     Vector(Vec<Vec3>),
     /// `Int32`, one component (zone id, flags, ...).
     Int(Vec<i32>),
+    /// `Float64`, nine components in row-major order, as VTK stores tensors (stress).
+    Tensor(Vec<Matrix3<f64>>),
 }
 
 /// A named data array.
@@ -67,6 +70,14 @@ impl Field {
         }
     }
 
+    /// A 3x3 tensor `Float64` array.
+    pub fn tensor(name: impl Into<String>, values: Vec<Matrix3<f64>>) -> Self {
+        Field {
+            name: name.into(),
+            values: FieldValues::Tensor(values),
+        }
+    }
+
     /// An `Int32` array.
     pub fn int(name: impl Into<String>, values: Vec<i32>) -> Self {
         Field {
@@ -81,6 +92,7 @@ impl Field {
             FieldValues::Scalar(v) => v.len(),
             FieldValues::Vector(v) => v.len(),
             FieldValues::Int(v) => v.len(),
+            FieldValues::Tensor(v) => v.len(),
         }
     }
 
@@ -260,6 +272,7 @@ fn array_attributes(name: &str, values: &FieldValues) -> String {
         FieldValues::Scalar(_) => ("Float64", ""),
         FieldValues::Vector(_) => ("Float64", r#" NumberOfComponents="3""#),
         FieldValues::Int(_) => ("Int32", ""),
+        FieldValues::Tensor(_) => ("Float64", r#" NumberOfComponents="9""#),
     };
     format!(r#"type="{kind}" Name="{}"{components}"#, escape(name))
 }
@@ -276,6 +289,10 @@ fn write_array(w: &mut dyn Write, name: &str, values: &FieldValues) -> io::Resul
             .iter()
             .try_for_each(|x| writeln!(w, "{:?} {:?} {:?}", x.x, x.y, x.z))?,
         FieldValues::Int(v) => v.iter().try_for_each(|x| writeln!(w, "{x}"))?,
+        FieldValues::Tensor(v) => v.iter().try_for_each(|t| {
+            let row_major: Vec<String> = t.transpose().iter().map(|x| format!("{x:?}")).collect();
+            writeln!(w, "{}", row_major.join(" "))
+        })?,
     }
     writeln!(w, "        </DataArray>")
 }
@@ -359,6 +376,11 @@ fn le_bytes(values: &FieldValues) -> Vec<u8> {
             .flat_map(f64::to_le_bytes)
             .collect(),
         FieldValues::Int(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+        FieldValues::Tensor(v) => v
+            .iter()
+            .flat_map(|t| t.transpose().iter().copied().collect::<Vec<_>>())
+            .flat_map(f64::to_le_bytes)
+            .collect(),
     }
 }
 
@@ -904,6 +926,12 @@ fn field(src: &Source, a: &Array, count: usize) -> Result<Field, MeshError> {
             values::<f64>(src, a, 3 * count)?
                 .chunks_exact(3)
                 .map(Vec3::from_column_slice)
+                .collect(),
+        ),
+        ("Float32" | "Float64", 9) => FieldValues::Tensor(
+            values::<f64>(src, a, 9 * count)?
+                .chunks_exact(9)
+                .map(|row_major| Matrix3::from_row_slice(row_major))
                 .collect(),
         ),
         (k, 1) if k.starts_with("Int") || k.starts_with("UInt") => {

@@ -1,9 +1,16 @@
-//! VTU frames (displacement, velocity, contact force, pressure, von Mises stress, J, zone) and
-//! their `.pvd` collection, through the mesh crate's writers.
+//! VTU frames and their `.pvd` collection, through the mesh crate's writers.
+//!
+//! Point data: `displacement`, `velocity` (dynamics), `contact_force` (with obstacles),
+//! `nodal_mean_stress` (the P1 pressure field of `mixed-p1`, `mixed-p1-log`, `dual`). Cell
+//! data at each element's centroid: `mean_stress` (`tr(sigma)/3`), `stress` (the Cauchy
+//! tensor, 9 components), `von_mises`, `J`, `region` (0: the body's material, `i`: the
+//! scene's `i`-th region), `zone` (zonal method). Stresses are tension positive: the
+//! pressure in the usual, compression-positive sense is `-mean_stress`.
 
 use crate::SceneError;
 use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
 use isochor_mesh::{ElementMesh, Vec3};
+use nalgebra::Matrix3;
 use std::path::{Path, PathBuf};
 
 /// The fields of one frame; the optional ones are left out of the file when empty.
@@ -17,6 +24,10 @@ pub struct FrameFields<'a> {
     pub tet_pressures: &'a [f64],
     /// Von Mises stress per element (optional).
     pub von_mises: &'a [f64],
+    /// Cauchy stress per element (optional).
+    pub stress: &'a [Matrix3<f64>],
+    /// The P1 pressure field at every node (optional).
+    pub nodal_pressures: &'a [f64],
     /// Contact force per node (optional).
     pub contact_forces: &'a [Vec3],
 }
@@ -29,6 +40,8 @@ impl<'a> FrameFields<'a> {
             velocities: &[],
             tet_pressures: &[],
             von_mises: &[],
+            stress: &[],
+            nodal_pressures: &[],
             contact_forces: &[],
         }
     }
@@ -42,18 +55,21 @@ pub struct FrameWriter {
     every: usize,
     encoding: VtuEncoding,
     zone_ids: Option<Vec<i32>>,
+    region_ids: Vec<i32>,
     entries: Vec<(f64, String)>,
 }
 
 impl FrameWriter {
     /// A writer into `dir` naming files `STEM_00012.vtu` and `STEM.pvd`, in `encoding`;
-    /// `zone_ids` is the first zone of each tet (or `None` without zones).
+    /// `zone_ids` is the first zone of each tet (or `None` without zones), `region_ids` the
+    /// region of each tet.
     pub fn new(
         dir: &Path,
         stem: &str,
         every: usize,
         encoding: VtuEncoding,
         zone_ids: Option<Vec<i32>>,
+        region_ids: Vec<i32>,
     ) -> Self {
         FrameWriter {
             dir: dir.to_path_buf(),
@@ -61,6 +77,7 @@ impl FrameWriter {
             every: every.max(1),
             encoding,
             zone_ids,
+            region_ids,
             entries: Vec::new(),
         }
     }
@@ -84,6 +101,8 @@ impl FrameWriter {
             velocities,
             tet_pressures,
             von_mises,
+            stress,
+            nodal_pressures,
             contact_forces,
         } = *fields;
         let rest = mesh.nodes();
@@ -99,9 +118,19 @@ impl FrameWriter {
         } else {
             vec![0.0; mesh.num_elements()]
         };
-        let mut cells = vec![Field::scalar("pressure", pressure), Field::scalar("J", j)];
-        if von_mises.len() == mesh.num_elements() {
+        let n = mesh.num_elements();
+        let mut cells = vec![
+            Field::scalar("mean_stress", pressure),
+            Field::scalar("J", j),
+        ];
+        if stress.len() == n {
+            cells.push(Field::tensor("stress", stress.to_vec()));
+        }
+        if von_mises.len() == n {
             cells.push(Field::scalar("von_mises", von_mises.to_vec()));
+        }
+        if self.region_ids.len() == n {
+            cells.push(Field::int("region", self.region_ids.clone()));
         }
         if let Some(z) = &self.zone_ids {
             cells.push(Field::int("zone", z.clone()));
@@ -109,6 +138,9 @@ impl FrameWriter {
         let mut points = vec![Field::vector("displacement", displacement)];
         if velocities.len() == positions.len() {
             points.push(Field::vector("velocity", velocities.to_vec()));
+        }
+        if nodal_pressures.len() == positions.len() {
+            points.push(Field::scalar("nodal_mean_stress", nodal_pressures.to_vec()));
         }
         if contact_forces.len() == positions.len() {
             points.push(Field::vector("contact_force", contact_forces.to_vec()));

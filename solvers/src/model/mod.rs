@@ -11,23 +11,24 @@ use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance,
     NodalConstraints, ZonalConstraints,
 };
-use isochor_energies::{
-    constrained_neo_hookean, standard_neo_hookean, DistortionalNeoHookean, Hyperelastic,
-};
 use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
 
+mod densities;
 mod dofs;
 mod problem;
+mod regions;
 mod schedule;
 mod supports;
 
+use densities::elastic_density;
 pub use dofs::Dofs;
 pub use problem::{
-    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, ScheduledLoad,
-    Shape, ZonalEnergy,
+    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Region,
+    ScheduledLoad, Shape, ZonalEnergy,
 };
+pub use regions::Regions;
 pub use schedule::{Curve, LoadLevel};
 
 /// How the nonlinear problem is solved.
@@ -60,8 +61,8 @@ pub struct Model {
     pub contact: Option<Contact>,
     /// Rest volume measured by each constraint row (scales the constraint residual).
     pub row_volumes: Vec<f64>,
-    /// For the zonal method, the penalty stiffness and its derivative for output pressures.
-    pub elastic_material: Arc<dyn Hyperelastic>,
+    /// The material of every element (stresses and output pressures).
+    pub regions: Regions,
     pub dofs: Dofs,
     /// Lumped (HRZ, positive) node masses.
     pub masses: Vec<f64>,
@@ -88,20 +89,6 @@ fn row_volumes(constraints: &dyn ConstraintSet, rest: &[Vec3]) -> Result<Vec<f64
     Ok(v)
 }
 
-/// `kappa / V_i` for every row of the nodal `constraints`, with `V_i` the rest volume the row
-/// measures: the stiffness of a lumped compliance `V_i / kappa` (static condensation, eq. 37)
-/// or of a base Poisson ratio (sec. 8.3), without inverting a compliance.
-fn stiffness_per_row(
-    constraints: &dyn ConstraintSet,
-    kappa: f64,
-    rest: &[Vec3],
-) -> Result<Vec<f64>, SolverError> {
-    Ok(row_volumes(constraints, rest)?
-        .iter()
-        .map(|v| kappa / v)
-        .collect())
-}
-
 /// The diagonal of a compliance (lumped sets only).
 fn diagonal(c: Compliance) -> Result<Vec<f64>, SolverError> {
     match c {
@@ -112,8 +99,18 @@ fn diagonal(c: Compliance) -> Result<Vec<f64>, SolverError> {
     }
 }
 
+/// `C_i^-1` for every row of a lumped compliance: the stiffness of static condensation
+/// (eq. 37) or of a base Poisson ratio (sec. 8.3), `kappa / V_i` for one material and the
+/// harmonic mean of the rows' elements for several.
+fn inverse_diagonal(set: &dyn ConstraintSet) -> Result<Vec<f64>, SolverError> {
+    Ok(diagonal(set.compliance())?
+        .iter()
+        .map(|c| 1.0 / c)
+        .collect())
+}
+
 impl Model {
-    /// Shear modulus of the model's material.
+    /// Shear modulus of the model's material (the volume-weighted mean over the regions).
     pub fn mu(&self) -> f64 {
         self.mu
     }
@@ -124,6 +121,7 @@ impl Model {
             mesh,
             method,
             material,
+            regions,
             zones,
             dirichlet,
             loads,
@@ -132,7 +130,9 @@ impl Model {
         for obstacle in &obstacles {
             obstacle.validate()?;
         }
-        material.validate()?;
+        let regions = Regions::new(&mesh, material.clone(), regions, |m| {
+            elastic_density(method, m)
+        })?;
         let curve_corners = loads
             .iter()
             .map(|l| l.curve.as_ref())
@@ -142,34 +142,21 @@ impl Model {
             .flat_map(|c| c.points().iter().map(|p| p.0))
             .collect();
         let dofs = Dofs::new(mesh.num_nodes(), &dirichlet)?;
-        let density = material.density;
-        let masses: Vec<f64> = mesh.lumped_volumes().iter().map(|v| density * v).collect();
-        let mu = material.mu;
+        let density = regions.per_element(|m| m.density);
+        let masses = mesh.lumped_masses(&density);
+        let mu = regions.mean_shear_modulus(&mesh);
+        let most_incompressible = regions.most_incompressible();
         let unsupported = |reason| SolverError::Unsupported {
             method: method.name(),
-            nu: material.nu,
+            nu: most_incompressible.nu,
             reason,
         };
 
-        let elastic: Arc<dyn Hyperelastic> = match method {
-            Method::Standard => Arc::new(standard_neo_hookean(material.lame()?)?),
-            Method::Zonal => match material.zonal_energy {
-                ZonalEnergy::Constrained => Arc::new(constrained_neo_hookean(
-                    mu,
-                    material.zonal_lambda,
-                    material.beta,
-                    material.epsilon,
-                )?),
-                ZonalEnergy::Standard => Arc::new(standard_neo_hookean(material.lame()?)?),
-            },
-            _ => Arc::new(DistortionalNeoHookean::new(mu)?),
-        };
-
-        // Every volumetric stiffness below comes from these two, converted once.
-        let (young, kappa) = (material.young(), material.mixed_kappa()?);
+        // Every volumetric stiffness below comes from the regions' kappa, converted once.
+        let kappa = regions.try_per_element(|m| m.mixed_kappa())?;
         let rule = exact_rule(mesh.kind());
-        let nodal = |measure, kappa, compliance| -> Result<NodalConstraints, SolverError> {
-            Ok(NodalConstraints::on_elements(
+        let nodal = |measure, kappa: &[f64], compliance| -> Result<NodalConstraints, SolverError> {
+            Ok(NodalConstraints::on_regions(
                 &mesh, rule, measure, kappa, compliance,
             )?)
         };
@@ -180,7 +167,7 @@ impl Model {
             Method::MixedP1 => {
                 constraints = Some(Arc::new(nodal(
                     Measure::Linear,
-                    kappa,
+                    &kappa,
                     material.nodal_compliance,
                 )?));
                 NonlinearScheme::SaddleDirect
@@ -188,12 +175,12 @@ impl Model {
             Method::MixedP1Log => {
                 constraints = Some(Arc::new(nodal(
                     Measure::Logarithmic,
-                    kappa,
+                    &kappa,
                     material.nodal_compliance,
                 )?));
                 NonlinearScheme::SaddleDirect
             }
-            Method::MixedP0 | Method::MixedP0Log if material.nu >= 0.5 => {
+            Method::MixedP0 | Method::MixedP0Log if most_incompressible.nu >= 0.5 => {
                 return Err(unsupported(
                     "element (P0) constraints with zero compliance over-constrain linear tets (about 5 tets, so 5 \
                      constraints, per 3 vertex DOFs): the system is singular and locks; use mixed-p1 or zonal",
@@ -205,33 +192,33 @@ impl Model {
                 } else {
                     Measure::Logarithmic
                 };
-                constraints = Some(Arc::new(ElementConstraints::on_elements(
-                    &mesh, rule, measure, kappa,
+                constraints = Some(Arc::new(ElementConstraints::on_regions(
+                    &mesh, rule, measure, &kappa,
                 )?));
                 NonlinearScheme::SaddleDirect
             }
             Method::Condensed => {
-                if material.nu >= 0.5 {
+                if most_incompressible.nu >= 0.5 {
                     return Err(unsupported(
                         "static condensation needs C^-1, which does not exist when C = 0; use mixed-p1 or dual",
                     ));
                 }
                 let set: Arc<dyn ConstraintSet> =
-                    Arc::new(nodal(Measure::Linear, kappa, NodalCompliance::Lumped)?);
-                // C^-1 of the lumped compliance C_i = V_i / kappa.
-                let stiffness = stiffness_per_row(set.as_ref(), kappa, mesh.nodes())?;
+                    Arc::new(nodal(Measure::Linear, &kappa, NodalCompliance::Lumped)?);
+                let stiffness = inverse_diagonal(set.as_ref())?;
                 let zero = vec![0.0; stiffness.len()];
                 augmented = Some(AugmentedConstraints::new(set, zero, stiffness));
                 NonlinearScheme::Minimize
             }
             Method::Dual => {
                 let set: Arc<dyn ConstraintSet> =
-                    Arc::new(nodal(Measure::Linear, kappa, NodalCompliance::Lumped)?);
+                    Arc::new(nodal(Measure::Linear, &kappa, NodalCompliance::Lumped)?);
                 let c = diagonal(set.compliance())?;
                 let stiffness = match material.dual_base_nu {
                     Some(nu) => {
-                        let base_kappa = isochor_energies::bulk_modulus(young, nu)?;
-                        stiffness_per_row(set.as_ref(), base_kappa, mesh.nodes())?
+                        let base = regions
+                            .try_per_element(|m| isochor_energies::bulk_modulus(m.young(), nu))?;
+                        inverse_diagonal(&nodal(Measure::Linear, &base, NodalCompliance::Lumped)?)?
                     }
                     None => vec![0.0; c.len()],
                 };
@@ -248,9 +235,10 @@ impl Model {
             }
         };
 
-        let mut terms: Vec<Box<dyn EnergyTerm>> = vec![Box::new(Elastic::new(
+        let mut terms: Vec<Box<dyn EnergyTerm>> = vec![Box::new(Elastic::with_materials(
             &mesh,
-            elastic.clone(),
+            regions.energies().to_vec(),
+            regions.element_regions().to_vec(),
             project_hessians,
         )?)];
         if let Some(skin) = material.epidermis {
@@ -264,8 +252,7 @@ impl Model {
         for ScheduledLoad { load, curve } in loads {
             terms.push(match load {
                 Load::Gravity(g) => {
-                    let weights: Vec<f64> =
-                        mesh.node_volumes().iter().map(|v| density * v).collect();
+                    let weights = mesh.node_masses(&density);
                     Box::new(DeadLoad::gravity(&weights, g).following(curve))
                 }
                 Load::Traction { faces, traction } => Box::new(
@@ -299,7 +286,7 @@ impl Model {
             constraints,
             augmented,
             row_volumes: rows,
-            elastic_material: elastic,
+            regions,
             dofs,
             masses,
             curve_corners,

@@ -263,6 +263,22 @@ impl Material {
     }
 }
 
+/// A part of the body with its own material.
+///
+/// Everything that enters an element's energy or mass is the region's: the model and its
+/// moduli, `nu` (so `lambda` and `kappa`), the zonal `lambda`, `beta`, `epsilon` and energy,
+/// and the density. The settings of the whole body (`nodal_compliance`, `dual_base_nu`,
+/// `epidermis`) are read from [`Problem::material`] and ignored here.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// Name for reports and outputs.
+    pub name: String,
+    /// The elements of the region.
+    pub elements: Vec<usize>,
+    /// Their material.
+    pub material: Material,
+}
+
 /// How a Dirichlet-constrained vertex moves with its parameter `t`: the load parameter in
 /// `[0, 1]` (quasi-static) or `time / duration` (dynamics), or the value of the condition's
 /// [`Curve`].
@@ -365,8 +381,12 @@ pub struct Problem {
     pub mesh: ElementMesh,
     /// The method.
     pub method: Method,
-    /// Material parameters.
+    /// The material of every element that no region claims; also the source of the settings
+    /// that hold for the whole body (`nodal_compliance`, `dual_base_nu`, `epidermis`).
     pub material: Material,
+    /// Parts of the body with their own material (a stiff strain-limiting layer under a soft
+    /// body): each element belongs to at most one region.
+    pub regions: Vec<Region>,
     /// Zones for the `zonal` method (defaults to one global zone).
     pub zones: Option<Zones>,
     /// Dirichlet conditions.

@@ -150,6 +150,7 @@ mod tests {
             mesh,
             method: Method::Standard,
             material: Material::from_young_poisson(1e3, 0.3, 1.0).unwrap(),
+            regions: Vec::new(),
             zones: None,
             dirichlet: Vec::new(),
             loads: Vec::new(),

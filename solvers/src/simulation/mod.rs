@@ -11,13 +11,13 @@ mod report;
 mod stepper;
 
 use crate::terms::Inertia;
-use crate::{LoadLevel, Method, Problem, Settings, SolverError};
+use crate::{LoadLevel, Method, Problem, Regions, Settings, SolverError};
 use faer::sparse::SparseColMat;
 pub use report::{IterationReport, StepReport, Timings};
 use stepper::Stepper;
 pub use stepper::{Adaptive, Progress, StepControl};
 
-use isochor_mesh::element::deformation_gradient;
+use isochor_mesh::element::{deformation_gradient, TET_EDGES};
 use isochor_mesh::{ElementMesh, Vec3};
 use nalgebra::{DMatrix, Matrix3};
 use std::time::{Duration, Instant};
@@ -114,6 +114,10 @@ pub struct Frame<'a> {
     pub tet_pressures: Vec<f64>,
     /// Von Mises stress per tet (see [`crate::Simulation::von_mises`]).
     pub von_mises: Vec<f64>,
+    /// Cauchy stress per tet (see [`crate::Simulation::cauchy_stress`]).
+    pub stress: Vec<Matrix3<f64>>,
+    /// The nodal pressure field of the P1 methods (see [`crate::Simulation::nodal_pressures`]).
+    pub nodal_pressures: Option<Vec<f64>>,
     /// Energies of the state.
     pub energies: Energies,
     /// Tets with non-positive volume in this state.
@@ -445,6 +449,11 @@ impl Simulation {
         Ok(norm(&self.model.dofs.gather(&external)).max(elastic))
     }
 
+    /// The materials of the body and the region of every element.
+    pub fn regions(&self) -> &Regions {
+        &self.model.regions
+    }
+
     /// Pressure per tet at `state`: for `standard`, the mean Cauchy stress `tr(sigma)/3`;
     /// for the mixed and dual methods, the constraint pressures (P0 value, P1 average, `p/J`
     /// for the logarithmic measure); for `zonal`, the zone multipliers plus the mean stress
@@ -467,6 +476,26 @@ impl Simulation {
             .collect()
     }
 
+    /// Cauchy stress per element at its centroid: the material's `P F^T / J` plus, for the
+    /// methods with constraints, their hydrostatic part (the multiplier pressure of the
+    /// element, see [`Simulation::tet_pressures`]). NaN where the energy is undefined.
+    pub fn cauchy_stress(&self, state: &State) -> Vec<Matrix3<f64>> {
+        let x = &state.positions;
+        let constrained = match &self.model.constraints {
+            Some(c) if state.multipliers.len() == c.num_constraints() => {
+                c.tet_pressures(x, &state.multipliers)
+            }
+            _ => Vec::new(),
+        };
+        (0..self.model.mesh.num_elements())
+            .map(|e| {
+                let material =
+                    material_stress(&self.model, e, x).unwrap_or_else(|| Matrix3::repeat(f64::NAN));
+                material + Matrix3::identity() * constrained.get(e).copied().unwrap_or(0.0)
+            })
+            .collect()
+    }
+
     /// Von Mises stress `sqrt(3/2 s:s)` per element at its centroid, `s` the deviatoric
     /// Cauchy stress (NaN where the energy is undefined). The hydrostatic constraint
     /// pressures do not enter it, so it is the same for every method's stress.
@@ -479,6 +508,36 @@ impl Simulation {
                 })
             })
             .collect()
+    }
+
+    /// The nodal (P1) pressure field of the methods with one multiplier per vertex
+    /// (`mixed-p1`, `mixed-p1-log`, `dual`), tension positive like the multipliers, at every
+    /// node: a vertex's multiplier, and on a 10-node mesh the mean of the two ends at a
+    /// mid-edge node (the field is linear in each element). `None` for the other methods.
+    pub fn nodal_pressures(&self, state: &State) -> Option<Vec<f64>> {
+        let nodal = matches!(
+            self.model.method,
+            Method::MixedP1 | Method::MixedP1Log | Method::Dual
+        );
+        let mesh = &self.model.mesh;
+        let vertices = mesh.corners().num_vertices();
+        if !nodal || state.multipliers.len() != vertices {
+            return None;
+        }
+        let mut p = state.multipliers.clone();
+        p.resize(mesh.num_nodes(), 0.0);
+        for e in 0..mesh.num_elements() {
+            let nodes = mesh.element(e);
+            for (k, [a, b]) in TET_EDGES
+                .iter()
+                .enumerate()
+                .take(nodes.len().saturating_sub(4))
+            {
+                p[nodes[4 + k]] =
+                    0.5 * (state.multipliers[nodes[*a]] + state.multipliers[nodes[*b]]);
+            }
+        }
+        Some(p)
     }
 
     /// The contact multipliers (normal force per vertex and obstacle, never negative),
@@ -725,6 +784,8 @@ impl Simulation {
                 state: &self.state,
                 tet_pressures: self.tet_pressures(&self.state),
                 von_mises: self.von_mises(&self.state),
+                stress: self.cauchy_stress(&self.state),
+                nodal_pressures: self.nodal_pressures(&self.state),
                 energies: self.energies(&self.state),
                 inverted_tets: inverted,
                 contact_forces: contact
@@ -779,7 +840,7 @@ fn step_target(model: &Model, level: LoadLevel, force_tolerance: f64) -> StepTar
 fn material_stress(model: &Model, e: usize, x: &[Vec3]) -> Option<Matrix3<f64>> {
     let f = deformation_gradient(x, model.mesh.element(e), model.centroids.gradients(e, 0));
     let j = f.determinant();
-    let p = model.elastic_material.pk1(&f).ok()?;
+    let p = model.regions.energy(e).pk1(&f).ok()?;
     Some(p * f.transpose() / j)
 }
 

@@ -25,13 +25,15 @@ pub fn elastic_rule(mesh: &ElementMesh) -> TetQuadrature {
     }
 }
 
-/// Elastic energy of every element with one material.
+/// Elastic energy of every element, each with its material.
 #[derive(Debug)]
 pub struct Elastic {
     nodes_per_element: usize,
     connectivity: Vec<usize>,
     rest: RestGeometry,
-    material: Arc<dyn Hyperelastic>,
+    materials: Vec<Arc<dyn Hyperelastic>>,
+    /// Index into `materials` of each element.
+    material_of: Vec<usize>,
     project: bool,
     /// `sum_e V_e max |dP/dF (I)|`, see [`EnergyTerm::rounding_scale`].
     rounding_scale: f64,
@@ -46,23 +48,53 @@ impl Elastic {
         material: Arc<dyn Hyperelastic>,
         project: bool,
     ) -> Result<Self, SolverError> {
-        let stiffness = material
-            .pk1_derivative(&Matrix3::identity())
-            .map_or(0.0, |d| d.amax());
+        Self::with_materials(mesh, vec![material], vec![0; mesh.num_elements()], project)
+    }
+
+    /// As [`Elastic::new`] with element `e` made of `materials[material_of[e]]`.
+    pub fn with_materials(
+        mesh: &ElementMesh,
+        materials: Vec<Arc<dyn Hyperelastic>>,
+        material_of: Vec<usize>,
+        project: bool,
+    ) -> Result<Self, SolverError> {
+        if material_of.len() != mesh.num_elements()
+            || material_of.iter().any(|&m| m >= materials.len())
+        {
+            return Err(SolverError::InvalidProblem(format!(
+                "elastic energy: {} material indices for {} elements and {} materials",
+                material_of.len(),
+                mesh.num_elements(),
+                materials.len()
+            )));
+        }
+        let stiffness: Vec<f64> = materials
+            .iter()
+            .map(|m| {
+                m.pk1_derivative(&Matrix3::identity())
+                    .map_or(0.0, |d| d.amax())
+            })
+            .collect();
         let rest = mesh.rest_geometry(elastic_rule(mesh))?;
+        let rounding_scale = material_of
+            .iter()
+            .enumerate()
+            .map(|(e, &m)| stiffness[m] * rest.element_volume(e))
+            .sum();
         Ok(Elastic {
             nodes_per_element: mesh.kind().num_nodes(),
             connectivity: mesh.connectivity().to_vec(),
-            rounding_scale: stiffness * rest.volume(),
+            rounding_scale,
             rest,
-            material,
+            materials,
+            material_of,
             project,
         })
     }
 
-    /// The material.
-    pub fn material(&self) -> &dyn Hyperelastic {
-        self.material.as_ref()
+    /// The material of element `e`.
+    pub fn material(&self, e: usize) -> &dyn Hyperelastic {
+        self.materials[self.material_of[e]].as_ref()
     }
 
     fn num_elements(&self) -> usize {
@@ -88,7 +120,7 @@ impl Elastic {
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let material = self.material.as_ref();
+        let material = self.material(e);
         let energy = element::evaluate(
             material,
             x,
@@ -103,7 +135,10 @@ impl Elastic {
 
 impl EnergyTerm for Elastic {
     fn name(&self) -> &'static str {
-        self.material.name()
+        match self.materials.as_slice() {
+            [one] => one.name(),
+            _ => "elastic (several materials)",
+        }
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
@@ -173,7 +208,7 @@ impl EnergyTerm for Elastic {
             let gradients = self.rest.element_gradients(e);
             (0..points).all(|q| {
                 let f = deformation_gradient(x, self.nodes(e), &gradients[q * n..(q + 1) * n]);
-                self.material.is_defined_at(f.determinant())
+                self.material(e).is_defined_at(f.determinant())
             })
         })
     }
