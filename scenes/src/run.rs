@@ -171,7 +171,6 @@ fn execute(
                     } else {
                         &[]
                     },
-                    tet_pressures: &frame.tet_pressures,
                     von_mises: &frame.von_mises,
                     stress: &frame.stress,
                     nodal_pressures: frame.nodal_pressures.as_deref().unwrap_or_default(),

@@ -1,11 +1,12 @@
 //! VTU frames and their `.pvd` collection, through the mesh crate's writers.
 //!
 //! Point data: `displacement`, `velocity` (dynamics), `contact_force` (with obstacles),
-//! `nodal_mean_stress` (the P1 pressure field of `mixed-p1`, `mixed-p1-log`, `dual`). Cell
-//! data at each element's centroid: `mean_stress` (`tr(sigma)/3`), `stress` (the Cauchy
-//! tensor, 9 components), `von_mises`, `J`, `region` (0: the body's material, `i`: the
-//! scene's `i`-th region), `zone` (zonal method). Stresses are tension positive: the
-//! pressure in the usual, compression-positive sense is `-mean_stress`.
+//! `pressure` (the nodal pressure unknowns of `mixed-p1`, `mixed-p1-log` and `dual`,
+//! compression positive: minus the multipliers `p = kappa (J - 1)` of the papers, linear in
+//! each element). Cell data at each element's centroid: `stress` (the Cauchy tensor, 9
+//! components, tension positive), `mean_stress` (`tr(sigma)/3`, tension positive: the
+//! hydrostatic pressure in the usual sense is `-mean_stress`), `von_mises`, `J`, `region` (0:
+//! the body's material, `i`: the scene's `i`-th region), `zone` (zonal method).
 
 use crate::SceneError;
 use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
@@ -20,13 +21,11 @@ pub struct FrameFields<'a> {
     pub positions: &'a [Vec3],
     /// Node velocities (dynamics; empty in quasi-static stepping).
     pub velocities: &'a [Vec3],
-    /// Mean stress per element (see `Simulation::tet_pressures`; zeros if empty).
-    pub tet_pressures: &'a [f64],
     /// Von Mises stress per element (optional).
     pub von_mises: &'a [f64],
     /// Cauchy stress per element (optional).
     pub stress: &'a [Matrix3<f64>],
-    /// The P1 pressure field at every node (optional).
+    /// The P1 multiplier field at every node, tension positive (optional).
     pub nodal_pressures: &'a [f64],
     /// Contact force per node (optional).
     pub contact_forces: &'a [Vec3],
@@ -38,7 +37,6 @@ impl<'a> FrameFields<'a> {
         FrameFields {
             positions: mesh.nodes(),
             velocities: &[],
-            tet_pressures: &[],
             von_mises: &[],
             stress: &[],
             nodal_pressures: &[],
@@ -99,7 +97,6 @@ impl FrameWriter {
         let FrameFields {
             positions,
             velocities,
-            tet_pressures,
             von_mises,
             stress,
             nodal_pressures,
@@ -113,14 +110,14 @@ impl FrameWriter {
             .zip(mesh.volumes_at(rest))
             .map(|(v, v0)| v / v0)
             .collect();
-        let pressure = if tet_pressures.len() == mesh.num_elements() {
-            tet_pressures.to_vec()
-        } else {
-            vec![0.0; mesh.num_elements()]
-        };
         let n = mesh.num_elements();
+        let mean_stress = if stress.len() == n {
+            stress.iter().map(|s| s.trace() / 3.0).collect()
+        } else {
+            vec![0.0; n]
+        };
         let mut cells = vec![
-            Field::scalar("mean_stress", pressure),
+            Field::scalar("mean_stress", mean_stress),
             Field::scalar("J", j),
         ];
         if stress.len() == n {
@@ -140,7 +137,8 @@ impl FrameWriter {
             points.push(Field::vector("velocity", velocities.to_vec()));
         }
         if nodal_pressures.len() == positions.len() {
-            points.push(Field::scalar("nodal_mean_stress", nodal_pressures.to_vec()));
+            let pressure = nodal_pressures.iter().map(|p| -p).collect();
+            points.push(Field::scalar("pressure", pressure));
         }
         if contact_forces.len() == positions.len() {
             points.push(Field::vector("contact_force", contact_forces.to_vec()));
