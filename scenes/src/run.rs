@@ -3,7 +3,10 @@
 //! stepping API.
 
 use crate::checkpoint::RunCheckpoint;
-use crate::output::{write_run_outputs, FrameFields, FrameWriter, OutputDir};
+use crate::output::{
+    run_title, write_preview, write_run_outputs, FrameFields, FrameWriter, OutputDir,
+    PreviewOptions,
+};
 use crate::probes::{self, ProbeInput};
 use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
 use crate::scene::Scene;
@@ -131,6 +134,7 @@ fn execute(
     }
     let bar = progress_bar(options.progress, total, &scene.name);
     let mut last_pressures: Vec<f64> = Vec::new();
+    let mut last_von_mises: Vec<f64> = Vec::new();
     let mut last_energies = Energies::default();
     let mut write_error: Option<SceneError> = None;
     let mut last_solver = None;
@@ -146,6 +150,7 @@ fn execute(
         step.cuts = frame.cuts.iter().map(cut_record).collect();
         history.push(step);
         last_pressures.clone_from(&frame.tet_pressures);
+        last_von_mises.clone_from(&frame.von_mises);
         last_energies = frame.energies;
         if write_error.is_some() {
             return;
@@ -309,6 +314,25 @@ fn execute(
                 .write(dir.path())?;
             }
             write_run_outputs(dir.path(), &result, scene.output.plots)?;
+            if scene.output.writes_preview() {
+                write_preview(
+                    &dir.path().join("preview.png"),
+                    &mesh,
+                    &FrameFields {
+                        positions: &final_state.positions,
+                        velocities: &[],
+                        tet_pressures: &last_pressures,
+                        von_mises: &last_von_mises,
+                        contact_forces: &[],
+                    },
+                    &PreviewOptions {
+                        field: scene.output.preview_field,
+                        rest_outline: scene.output.preview_rest,
+                        gravity: scene.loads.gravity,
+                        title: &run_title(&result),
+                    },
+                )?;
+            }
             Some(dir.commit()?)
         }
         None => None,

@@ -32,6 +32,43 @@ impl<'a> FrameFields<'a> {
             contact_forces: &[],
         }
     }
+
+    /// Node displacements from the rest positions of `mesh`.
+    pub fn displacements(&self, mesh: &ElementMesh) -> Vec<Vec3> {
+        self.positions
+            .iter()
+            .zip(mesh.nodes())
+            .map(|(x, r)| x - r)
+            .collect()
+    }
+
+    /// Deformed over rest volume of every element (`J`).
+    pub fn volume_ratios(&self, mesh: &ElementMesh) -> Vec<f64> {
+        mesh.volumes_at(self.positions)
+            .iter()
+            .zip(mesh.volumes_at(mesh.nodes()))
+            .map(|(v, v0)| v / v0)
+            .collect()
+    }
+
+    /// The mean stress per element, zeros if there is none.
+    pub fn pressures(&self, mesh: &ElementMesh) -> Vec<f64> {
+        or_zeros(self.tet_pressures, mesh.num_elements())
+    }
+
+    /// The von Mises stress per element, zeros if there is none (the rest state).
+    pub fn von_mises_or_zeros(&self, mesh: &ElementMesh) -> Vec<f64> {
+        or_zeros(self.von_mises, mesh.num_elements())
+    }
+}
+
+/// `values` if there is one per element, else zeros.
+fn or_zeros(values: &[f64], elements: usize) -> Vec<f64> {
+    if values.len() == elements {
+        values.to_vec()
+    } else {
+        vec![0.0; elements]
+    }
 }
 
 /// Writes every `every`-th frame (and always the last) into a folder.
@@ -82,23 +119,13 @@ impl FrameWriter {
         let FrameFields {
             positions,
             velocities,
-            tet_pressures,
             von_mises,
             contact_forces,
+            ..
         } = *fields;
-        let rest = mesh.nodes();
-        let displacement: Vec<Vec3> = positions.iter().zip(rest).map(|(x, r)| x - r).collect();
-        let j: Vec<f64> = mesh
-            .volumes_at(positions)
-            .iter()
-            .zip(mesh.volumes_at(rest))
-            .map(|(v, v0)| v / v0)
-            .collect();
-        let pressure = if tet_pressures.len() == mesh.num_elements() {
-            tet_pressures.to_vec()
-        } else {
-            vec![0.0; mesh.num_elements()]
-        };
+        let displacement = fields.displacements(mesh);
+        let j = fields.volume_ratios(mesh);
+        let pressure = fields.pressures(mesh);
         let mut cells = vec![Field::scalar("pressure", pressure), Field::scalar("J", j)];
         if von_mises.len() == mesh.num_elements() {
             cells.push(Field::scalar("von_mises", von_mises.to_vec()));
