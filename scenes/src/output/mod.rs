@@ -45,9 +45,10 @@ pub fn write_run_outputs(dir: &Path, result: &RunResult, plots: bool) -> Result<
     Ok(())
 }
 
-/// The title of a run's pictures: scene and method, and the step at which it failed.
+/// The title of a run's pictures: scene, method and element, and the step at which it
+/// failed.
 pub fn run_title(result: &RunResult) -> String {
-    let mut title = format!("{} ({})", result.scene, result.method);
+    let mut title = format!("{} ({}, {})", result.scene, result.method, result.element);
     if result.error.is_some() {
         title += &match result.failed_step {
             Some(step) => format!(", failed at step {step}"),
