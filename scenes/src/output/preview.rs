@@ -349,9 +349,7 @@ impl Canvas {
             }
         }
     }
-}
 
-impl Canvas {
     /// Draws the segment between projected points `a` and `b` in `color`, over everything,
     /// one pixel wide, unless an end is not finite.
     fn line(&mut self, a: [f64; 3], b: [f64; 3], color: RGBColor) {
