@@ -54,6 +54,9 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("vtu", "output.vtu"),
     ("plots", "output.plots"),
     ("vtu_encoding", "output.vtu_encoding"),
+    ("preview", "output.preview"),
+    ("preview_field", "output.preview_field"),
+    ("preview_rest", "output.preview_rest"),
 ];
 
 /// One `KEY=VALUE` override.

@@ -3,13 +3,17 @@
 //! stepping API.
 
 use crate::checkpoint::RunCheckpoint;
-use crate::output::{write_run_outputs, FrameFields, FrameWriter, OutputDir};
+use crate::output::{
+    run_title, write_preview, write_run_outputs, FrameFields, FrameWriter, OutputDir,
+    PreviewOptions,
+};
 use crate::probes::{self, ProbeInput};
 use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
 use crate::scene::Scene;
 use crate::{problem, SceneError};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use isochor_solvers::{Energies, Frame, Simulation, State, StepReport};
+use nalgebra::Matrix3;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -143,6 +147,8 @@ fn execute(
     }
     let bar = progress_bar(options.progress, total, &scene.name);
     let mut last_pressures: Vec<f64> = Vec::new();
+    let mut last_stress: Vec<Matrix3<f64>> = Vec::new();
+    let mut last_von_mises: Vec<f64> = Vec::new();
     let mut last_energies = Energies::default();
     let mut write_error: Option<SceneError> = None;
     let mut last_solver = None;
@@ -158,6 +164,8 @@ fn execute(
         step.cuts = frame.cuts.iter().map(cut_record).collect();
         history.push(step);
         last_pressures.clone_from(&frame.tet_pressures);
+        last_stress.clone_from(&frame.stress);
+        last_von_mises.clone_from(&frame.von_mises);
         last_energies = frame.energies;
         if write_error.is_some() {
             return;
@@ -322,6 +330,26 @@ fn execute(
                 .write(dir.path())?;
             }
             write_run_outputs(dir.path(), &result, scene.output.plots)?;
+            if scene.output.writes_preview() {
+                write_preview(
+                    &dir.path().join("preview.png"),
+                    &mesh,
+                    &FrameFields {
+                        positions: &final_state.positions,
+                        velocities: &[],
+                        von_mises: &last_von_mises,
+                        stress: &last_stress,
+                        nodal_pressures: &[],
+                        contact_forces: &[],
+                    },
+                    &PreviewOptions {
+                        field: scene.output.preview_field,
+                        rest_outline: scene.output.preview_rest,
+                        gravity: scene.loads.gravity,
+                        title: &run_title(&result),
+                    },
+                )?;
+            }
             Some(dir.commit()?)
         }
         None => None,

@@ -647,6 +647,22 @@ pub struct OutputSpec {
     /// How the VTU frames store their arrays.
     #[serde(default)]
     pub vtu_encoding: VtuEncodingName,
+    /// Write `preview.png`, a picture of the deformed body (default: as `plots`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preview: Option<bool>,
+    /// The field that colors the preview.
+    #[serde(default)]
+    pub preview_field: PreviewField,
+    /// Outline the rest configuration in the preview.
+    #[serde(default = "yes")]
+    pub preview_rest: bool,
+}
+
+impl OutputSpec {
+    /// Whether `preview.png` is written: `preview` if given, else `plots`.
+    pub fn writes_preview(&self) -> bool {
+        self.preview.unwrap_or(self.plots)
+    }
 }
 
 fn yes() -> bool {
@@ -660,6 +676,40 @@ impl Default for OutputSpec {
             vtu: true,
             plots: true,
             vtu_encoding: VtuEncodingName::Auto,
+            preview: None,
+            preview_field: PreviewField::Displacement,
+            preview_rest: true,
+        }
+    }
+}
+
+/// The `output.preview_field` key: what colors the preview, with the values of the VTU
+/// frames' field of that name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+pub enum PreviewField {
+    /// Length of the node displacement, averaged over the nodes of each drawn triangle.
+    #[default]
+    #[serde(rename = "displacement")]
+    Displacement,
+    /// Von Mises stress of the tet behind each boundary face.
+    #[serde(rename = "von_mises")]
+    VonMises,
+    /// Mean stress `tr(sigma)/3` (tension positive) of the tet behind each boundary face.
+    #[serde(rename = "mean_stress")]
+    MeanStress,
+    /// Volume ratio of the tet behind each boundary face.
+    #[serde(rename = "J")]
+    J,
+}
+
+impl PreviewField {
+    /// The key's value, which is also the name of the VTU field.
+    pub fn name(self) -> &'static str {
+        match self {
+            PreviewField::Displacement => "displacement",
+            PreviewField::VonMises => "von_mises",
+            PreviewField::MeanStress => "mean_stress",
+            PreviewField::J => "J",
         }
     }
 }

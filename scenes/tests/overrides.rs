@@ -6,7 +6,7 @@
 use isochor_mesh::{Vec3, Zones};
 use isochor_scenes::overrides::FLAT_KEYS;
 use isochor_scenes::problem::{build, Built};
-use isochor_scenes::scene::VtuEncodingName;
+use isochor_scenes::scene::{PreviewField, VtuEncodingName};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
     Epidermis, Kappa, LinearSolver, Load, Method, Simulation, StepControl, Stepping, ZonalEnergy,
@@ -373,6 +373,30 @@ const CASES: &[Case] = &[
         value: "binary",
         reached: |s, _| s.output.vtu_encoding == VtuEncodingName::Binary,
         bad: "gzip",
+    },
+    Case {
+        key: "preview",
+        scene: STATIC,
+        setup: &[],
+        value: "false",
+        reached: |s, _| !s.output.writes_preview(),
+        bad: "no",
+    },
+    Case {
+        key: "preview_field",
+        scene: STATIC,
+        setup: &[],
+        value: "von_mises",
+        reached: |s, _| s.output.preview_field == PreviewField::VonMises,
+        bad: "stress",
+    },
+    Case {
+        key: "preview_rest",
+        scene: STATIC,
+        setup: &[],
+        value: "false",
+        reached: |s, _| !s.output.preview_rest,
+        bad: "1",
     },
 ];
 

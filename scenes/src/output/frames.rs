@@ -43,6 +43,45 @@ impl<'a> FrameFields<'a> {
             contact_forces: &[],
         }
     }
+
+    /// Node displacements from the rest positions of `mesh`.
+    pub fn displacements(&self, mesh: &ElementMesh) -> Vec<Vec3> {
+        self.positions
+            .iter()
+            .zip(mesh.nodes())
+            .map(|(x, r)| x - r)
+            .collect()
+    }
+
+    /// Deformed over rest volume of every element (`J`).
+    pub fn volume_ratios(&self, mesh: &ElementMesh) -> Vec<f64> {
+        mesh.volumes_at(self.positions)
+            .iter()
+            .zip(mesh.volumes_at(mesh.nodes()))
+            .map(|(v, v0)| v / v0)
+            .collect()
+    }
+
+    /// The mean stress `tr(sigma)/3` per element (tension positive), zeros if there is no
+    /// stress (the rest state).
+    pub fn mean_stresses(&self, mesh: &ElementMesh) -> Vec<f64> {
+        let mean: Vec<f64> = self.stress.iter().map(|s| s.trace() / 3.0).collect();
+        or_zeros(&mean, mesh.num_elements())
+    }
+
+    /// The von Mises stress per element, zeros if there is none (the rest state).
+    pub fn von_mises_or_zeros(&self, mesh: &ElementMesh) -> Vec<f64> {
+        or_zeros(self.von_mises, mesh.num_elements())
+    }
+}
+
+/// `values` if there is one per element, else zeros.
+fn or_zeros(values: &[f64], elements: usize) -> Vec<f64> {
+    if values.len() == elements {
+        values.to_vec()
+    } else {
+        vec![0.0; elements]
+    }
 }
 
 /// Writes every `every`-th frame (and always the last) into a folder.
@@ -101,23 +140,13 @@ impl FrameWriter {
             stress,
             nodal_pressures,
             contact_forces,
+            ..
         } = *fields;
-        let rest = mesh.nodes();
-        let displacement: Vec<Vec3> = positions.iter().zip(rest).map(|(x, r)| x - r).collect();
-        let j: Vec<f64> = mesh
-            .volumes_at(positions)
-            .iter()
-            .zip(mesh.volumes_at(rest))
-            .map(|(v, v0)| v / v0)
-            .collect();
         let n = mesh.num_elements();
-        let mean_stress = if stress.len() == n {
-            stress.iter().map(|s| s.trace() / 3.0).collect()
-        } else {
-            vec![0.0; n]
-        };
+        let displacement = fields.displacements(mesh);
+        let j = fields.volume_ratios(mesh);
         let mut cells = vec![
-            Field::scalar("mean_stress", mean_stress),
+            Field::scalar("mean_stress", fields.mean_stresses(mesh)),
             Field::scalar("J", j),
         ];
         if stress.len() == n {

@@ -1,17 +1,20 @@
-//! What `--out DIR` writes: VTU frames and a `.pvd` collection, `summary.json`, CSV logs and
-//! PNG plots. Everything goes to a temporary folder next to `DIR` that is renamed to `DIR`
+//! What `--out DIR` writes: VTU frames and a `.pvd` collection, `summary.json`, CSV logs,
+//! PNG plots and `preview.png`, a picture of the final deformed body (see [`write_preview`];
+//! for a run that failed, its last accepted state). Everything goes to a temporary folder next to `DIR` that is renamed to `DIR`
 //! only when the run's outputs are complete, so an error leaves no partial output.
 
 mod atomic;
 mod csv;
 mod frames;
 mod plots;
+mod preview;
 
 pub use atomic::OutputDir;
 pub use csv::{write_iterations_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
 pub(crate) use plots::{finish_plot, plot_error, register_font};
 pub use plots::{plot_energy, plot_residuals};
+pub use preview::{write_preview, PreviewOptions};
 
 use crate::result::{RunResult, StepRecord};
 use crate::SceneError;
@@ -33,13 +36,26 @@ pub fn write_run_outputs(dir: &Path, result: &RunResult, plots: bool) -> Result<
     write_iterations_csv(&dir.join("iterations.csv"), &attempted)?;
     write_steps_csv(&dir.join("steps.csv"), &result.history)?;
     if plots {
-        let title = format!("{} ({})", result.scene, result.method);
+        let title = run_title(result);
         plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;
         if result.dynamic {
             plot_energy(&dir.join("energy.png"), &title, &result.history)?;
         }
     }
     Ok(())
+}
+
+/// The title of a run's pictures: scene, method and element, and the step at which it
+/// failed.
+pub fn run_title(result: &RunResult) -> String {
+    let mut title = format!("{} ({}, {})", result.scene, result.method, result.element);
+    if result.error.is_some() {
+        title += &match result.failed_step {
+            Some(step) => format!(", failed at step {step}"),
+            None => ", failed".to_string(),
+        };
+    }
+    title
 }
 
 /// Writes a whole file.
