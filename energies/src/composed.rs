@@ -216,7 +216,10 @@ mod tests {
             mu: f64::NAN,
             lambda: 1.0,
         };
-        assert_eq!(StableNeoHookean::from_linear_lame(bad).unwrap_err().name, "mu");
+        assert_eq!(
+            StableNeoHookean::from_linear_lame(bad).unwrap_err().name,
+            "mu"
+        );
     }
 
     #[test]

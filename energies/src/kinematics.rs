@@ -347,7 +347,11 @@ mod tests {
         let j = f.determinant();
         let c = f.transpose() * f;
         let i2 = 0.5 * (c.trace().powi(2) - (c * c).trace());
-        assert_relative_eq!(inv.ib1(), j.powf(-2.0 / 3.0) * c.trace(), max_relative = 1e-14);
+        assert_relative_eq!(
+            inv.ib1(),
+            j.powf(-2.0 / 3.0) * c.trace(),
+            max_relative = 1e-14
+        );
         assert_relative_eq!(inv.ib2(), j.powf(-4.0 / 3.0) * i2, max_relative = 1e-14);
         let eps = 1e-6;
         let at = |v: &Vector9| IsochoricInvariants::new("test", &unflatten(v)).unwrap();

@@ -32,7 +32,7 @@ use isochor_energies::triangle::{self, area_element, RestFacePoints};
 use isochor_energies::{
     constrained_neo_hookean, quadratic_neo_hookean, stable_neo_hookean, standard_neo_hookean, tet,
     BonetWood, DistortionalNeoHookean, DistortionalStableNeoHookean, Epidermis, FbarNeoHookean,
-    Hyperelastic, Lame, Mooney, MooneyRivlin, StableNeoHookean, Yeoh,
+    Hyperelastic, Lame, Mooney, MooneyRivlin, Ogden, StableNeoHookean, Yeoh,
 };
 use isochor_mesh::element::{
     deformation_gradient, RestGeometry, TetElement, TetQuadrature, TriElement, TriQuadrature,
@@ -84,6 +84,7 @@ fn materials(p: &Params) -> Vec<Box<dyn Hyperelastic>> {
         Box::new(DistortionalStableNeoHookean::new(p.mu).expect("distortional stable")),
         Box::new(MooneyRivlin::new(mr.0, mr.1).expect("Mooney-Rivlin")),
         Box::new(Yeoh::new(yeoh.0, yeoh.1, yeoh.2).expect("Yeoh")),
+        Box::new(Ogden::new(&p.ogden()).expect("Ogden")),
         Box::new(standard_neo_hookean(lame).expect("standard")),
         Box::new(quadratic_neo_hookean(lame).expect("quadratic")),
         Box::new(constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).expect("constrained")),

@@ -8,8 +8,8 @@
 //! property tests; [`penalty_suite!`] does the same for penalties.
 
 use isochor_energies::{
-    constrained_neo_hookean, kinematics, project_to_psd, quadratic_neo_hookean,
-    stable_neo_hookean, standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean,
+    constrained_neo_hookean, kinematics, project_to_psd, quadratic_neo_hookean, stable_neo_hookean,
+    standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean,
     DistortionalStableNeoHookean, Epidermis, FbarNeoHookean, Hyperelastic, Lame, LogPenalty,
     Matrix12, Matrix9, Mooney, MooneyRivlin, Ogden, OutOfDomain, QuadraticPenalty, SheenPenalty,
     StableNeoHookean, VolumetricPenalty, Yeoh,
@@ -487,7 +487,10 @@ fn uniaxial_stress_matches_closed_forms() {
             assert!((sigma[(1, 1)] - sigma[(2, 2)]).abs() <= 1e-12 * expected.abs().max(*mu));
         }
     }
-    eprintln!("uniaxial: largest relative error {worst:.1e} over {} models", cases.len());
+    eprintln!(
+        "uniaxial: largest relative error {worst:.1e} over {} models",
+        cases.len()
+    );
 }
 
 /// Small simple shear `F = I + gamma e1 e2^T`, `gamma = 1e-6`: `sigma12 / gamma` is the
@@ -507,18 +510,34 @@ fn small_shear_gives_the_initial_shear_modulus() {
         (Box::new(MooneyRivlin::new(0.45, 0.2).unwrap()), 1.3),
         (Box::new(MooneyRivlin::new(0.8, -0.15).unwrap()), 1.3),
         (Box::new(Yeoh::new(0.65, -0.06, 0.004).unwrap()), 1.3),
-        (Box::new(Ogden::new(&[(1.0, 2.0), (-0.3, -1.0)]).unwrap()), 1.15),
-        (Box::new(Ogden::new(&[(0.63, 1.3), (0.0012, 5.0), (-0.01, -2.0)]).unwrap()), 0.4225),
+        (
+            Box::new(Ogden::new(&[(1.0, 2.0), (-0.3, -1.0)]).unwrap()),
+            1.15,
+        ),
+        (
+            Box::new(Ogden::new(&[(0.63, 1.3), (0.0012, 5.0), (-0.01, -2.0)]).unwrap()),
+            0.4225,
+        ),
         // The energy's mu times 3/4 (Smith et al. 2018, sec. 3.4).
-        (Box::new(DistortionalStableNeoHookean::new(1.3).unwrap()), 0.975),
+        (
+            Box::new(DistortionalStableNeoHookean::new(1.3).unwrap()),
+            0.975,
+        ),
         (Box::new(stable_neo_hookean(lame).unwrap()), 0.975),
-        (Box::new(StableNeoHookean::from_linear_lame(lame).unwrap()), 1.3),
+        (
+            Box::new(StableNeoHookean::from_linear_lame(lame).unwrap()),
+            1.3,
+        ),
         (Box::new(standard_neo_hookean(lame).unwrap()), 1.3),
     ];
     for (m, mu0) in &cases {
         let measured = cauchy(m.as_ref(), &f)[(0, 1)] / gamma;
         let error = (measured - mu0).abs() / mu0;
-        assert!(error <= 1e-6, "{}: sigma12 / gamma = {measured}, expected {mu0}", m.name());
+        assert!(
+            error <= 1e-6,
+            "{}: sigma12 / gamma = {measured}, expected {mu0}",
+            m.name()
+        );
     }
 }
 
@@ -529,8 +548,11 @@ fn nearly_equal_stretches() -> impl Strategy<Value = Matrix3<f64>> {
     let gap = || {
         prop_oneof![
             Just(0.0),
-            (-12.0..-3.0f64, proptest::bool::ANY)
-                .prop_map(|(e, negative)| if negative { -(10f64.powf(e)) } else { 10f64.powf(e) }),
+            (-12.0..-3.0f64, proptest::bool::ANY).prop_map(|(e, negative)| if negative {
+                -(10f64.powf(e))
+            } else {
+                10f64.powf(e)
+            }),
         ]
     };
     (rotation(), rotation(), 0.3..3.0f64, gap(), gap()).prop_map(|(q, r, l, d1, d2)| {
@@ -1035,7 +1057,10 @@ fn bad_parameters_are_named_errors() {
     assert_eq!(MooneyRivlin::new(f64::NAN, 0.2).unwrap_err().name, "c10");
     assert_eq!(Yeoh::new(-0.1, 0.0, 0.0).unwrap_err().name, "c10");
     assert_eq!(Yeoh::new(0.1, f64::INFINITY, 0.0).unwrap_err().name, "c20");
-    assert_eq!(DistortionalStableNeoHookean::new(0.0).unwrap_err().name, "mu");
+    assert_eq!(
+        DistortionalStableNeoHookean::new(0.0).unwrap_err().name,
+        "mu"
+    );
     assert_eq!(
         stable_neo_hookean(Lame {
             mu: 1.0,

@@ -30,7 +30,11 @@ impl MooneyRivlin {
         if c10 + c01 > 0.0 {
             Ok(MooneyRivlin { c10, c01 })
         } else {
-            let (name, value) = if c01 < 0.0 { ("c01", c01) } else { ("c10", c10) };
+            let (name, value) = if c01 < 0.0 {
+                ("c01", c01)
+            } else {
+                ("c10", c10)
+            };
             Err(ParameterError {
                 name,
                 value,
