@@ -6,7 +6,8 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use isochor_energies::element::{self, RestPoints};
 use isochor_energies::{
     constrained_neo_hookean, quadratic_neo_hookean, standard_neo_hookean, tet, BonetWood,
-    DistortionalNeoHookean, FbarNeoHookean, Hyperelastic, Lame, Mooney, StableNeoHookean,
+    DistortionalNeoHookean, FbarNeoHookean, Hyperelastic, Lame, Mooney, MooneyRivlin,
+    StableNeoHookean, Yeoh,
 };
 use isochor_mesh::element::TetQuadrature;
 use isochor_mesh::{ElementMesh, TetMesh};
@@ -38,6 +39,8 @@ fn materials() -> Vec<Box<dyn Hyperelastic>> {
         Box::new(BonetWood::new(lame.mu).unwrap()),
         Box::new(StableNeoHookean::from_linear_lame(lame).unwrap()),
         Box::new(FbarNeoHookean::new(lame.mu, 0.1).unwrap()),
+        Box::new(MooneyRivlin::new(0.35 * lame.mu, 0.15 * lame.mu).unwrap()),
+        Box::new(Yeoh::new(0.5 * lame.mu, -0.05 * lame.mu, 0.01 * lame.mu).unwrap()),
         Box::new(standard_neo_hookean(lame).unwrap()),
         Box::new(quadratic_neo_hookean(lame).unwrap()),
         Box::new(constrained_neo_hookean(lame.mu, 1e5, 1.0, 0.1).unwrap()),

@@ -2,11 +2,11 @@
 //!
 //! The standard neo-Hookean energy (eq. 6 of Francu et al. 2021, eq. 4 of Sheen et al. 2021),
 //! its `(J - 1)^2` variant and the constrained neo-Hookean of Sheen et al. 2021 (eq. 12 + 13)
-//! are each one value of [`Composed`].
+//! are each one value of [`Composed`], and so is Stable neo-Hookean (Smith et al. 2018).
 
 use crate::kinematics::{add_volumetric_tangent, cofactor};
-use crate::materials::{DistortionalNeoHookean, FbarNeoHookean};
-use crate::parameters::require_lambda;
+use crate::materials::{DistortionalNeoHookean, DistortionalStableNeoHookean, FbarNeoHookean};
+use crate::parameters::{require_lambda, require_mu};
 use crate::penalties::{LogPenalty, QuadraticPenalty, SheenPenalty};
 use crate::{Hyperelastic, Lame, Matrix9, OutOfDomain, ParameterError, VolumetricPenalty};
 use nalgebra::Matrix3;
@@ -37,6 +37,18 @@ pub type QuadraticNeoHookean = Composed<DistortionalNeoHookean, QuadraticPenalty
 
 /// Constrained neo-Hookean of Sheen et al. 2021: `mu/2 (alpha~^2 I_C - 3) + lambda U(J; beta)`.
 pub type ConstrainedNeoHookean = Composed<FbarNeoHookean, SheenPenalty>;
+
+/// Stable neo-Hookean of Smith, de Goes and Kim 2018 (eq. 14), the invertible energy compared
+/// against in sec. 5 of Sheen et al. 2021:
+/// `Psi_d + lambda/2 (J - 1)^2` with the distortional part `Psi_d` of
+/// [`DistortionalStableNeoHookean`]. Rest stable and defined for every `F`.
+///
+/// It has the stress and tangent of the paper's
+/// `mu/2 (I_C - 3) + lambda/2 (J - alpha)^2 - mu/2 log(I_C + 1)`, `alpha = 1 + 3 mu/(4 lambda)`;
+/// its energy is the paper's minus the paper's rest value
+/// `lambda/2 (1 - alpha)^2 - mu/2 log 4 = 9 mu^2/(32 lambda) - mu/2 log 4`, so `Psi(I) = 0`.
+/// `lambda = 0` is allowed (the paper's `alpha` is then undefined, this form is not).
+pub type StableNeoHookean = Composed<DistortionalStableNeoHookean, QuadraticPenalty>;
 
 impl<D: Hyperelastic, P: VolumetricPenalty> Composed<D, P> {
     /// `deviatoric + lambda * penalty`, with `lambda` finite and non-negative.
@@ -75,6 +87,30 @@ pub fn quadratic_neo_hookean(lame: Lame) -> Result<QuadraticNeoHookean, Paramete
         QuadraticPenalty,
         "neo-Hookean (J-1)^2",
     )
+}
+
+/// Stable neo-Hookean (see [`StableNeoHookean`]) with `(mu, lambda)` used directly in the
+/// energy; `mu > 0`, `lambda >= 0`, both finite.
+pub fn stable_neo_hookean(lame: Lame) -> Result<StableNeoHookean, ParameterError> {
+    Composed::new(
+        DistortionalStableNeoHookean::new(lame.mu)?,
+        lame.lambda,
+        QuadraticPenalty,
+        "Stable neo-Hookean",
+    )
+}
+
+impl StableNeoHookean {
+    /// Stable neo-Hookean matching, at small strain, linear elasticity with the given Lame
+    /// parameters: the energy uses `mu' = 4/3 mu`, `lambda' = lambda + 5/6 mu` (Smith et al.
+    /// 2018, sec. 3.4). `mu > 0` and `lambda' >= 0`, both finite.
+    pub fn from_linear_lame(lame: Lame) -> Result<Self, ParameterError> {
+        let mu = require_mu(lame.mu)?;
+        stable_neo_hookean(Lame {
+            mu: 4.0 / 3.0 * mu,
+            lambda: lame.lambda + 5.0 / 6.0 * mu,
+        })
+    }
 }
 
 /// Constrained neo-Hookean (Sheen et al. 2021, eq. 12 + eq. 13):
@@ -162,6 +198,28 @@ mod tests {
         let fit = f.try_inverse().unwrap().transpose();
         let p = (f - fit) * 1.5 + fit * (7.0 * lj);
         assert_relative_eq!(m.pk1(&f).unwrap(), p, max_relative = 1e-13);
+    }
+
+    #[test]
+    fn stable_neo_hookean_parameters() {
+        let m = StableNeoHookean::from_linear_lame(Lame {
+            mu: 3.0,
+            lambda: 0.0,
+        })
+        .unwrap();
+        assert_eq!((m.deviatoric.mu(), m.lambda), (4.0, 2.5));
+        // lambda = 0 is allowed: the distortional part alone is rest stable.
+        let m = stable_neo_hookean(Lame::new(1.0, 0.0).unwrap()).unwrap();
+        assert_eq!(m.pk1(&Matrix3::identity()).unwrap(), Matrix3::zeros());
+        assert_eq!(m.energy_density(&Matrix3::identity()).unwrap(), 0.0);
+        let bad = Lame {
+            mu: f64::NAN,
+            lambda: 1.0,
+        };
+        assert_eq!(
+            StableNeoHookean::from_linear_lame(bad).unwrap_err().name,
+            "mu"
+        );
     }
 
     #[test]

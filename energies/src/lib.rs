@@ -13,17 +13,25 @@
 //!
 //! Contents:
 //! - densities ([`Hyperelastic`]): [`Mooney`] (eq. 29 of Francu et al. 2021),
-//!   [`DistortionalNeoHookean`] (eq. 32), [`BonetWood`] (eq. 30), [`StableNeoHookean`]
-//!   (Smith et al. 2018), [`FbarNeoHookean`] (eq. 10-12 of Sheen et al. 2021);
+//!   [`DistortionalNeoHookean`] (eq. 32), [`BonetWood`] (eq. 30), [`FbarNeoHookean`]
+//!   (eq. 10-12 of Sheen et al. 2021), [`DistortionalStableNeoHookean`] (the distortional part
+//!   of Stable neo-Hookean, Smith et al. 2018), and the uncoupled invariant models
+//!   [`MooneyRivlin`] `c10 (Ib1 - 3) + c01 (Ib2 - 3)` and [`Yeoh`]
+//!   `c10 (Ib1 - 3) + c20 (Ib1 - 3)^2 + c30 (Ib1 - 3)^3`, and the uncoupled N-term [`Ogden`]
+//!   model on the isochoric principal stretches;
 //! - penalties ([`VolumetricPenalty`]): [`LogPenalty`], [`QuadraticPenalty`], [`SheenPenalty`]
 //!   (eq. 13-15 of Sheen et al. 2021);
 //! - [`Composed`] `Psi_dev + lambda U(J)`: [`standard_neo_hookean`], [`quadratic_neo_hookean`],
-//!   [`constrained_neo_hookean`];
+//!   [`constrained_neo_hookean`], [`stable_neo_hookean`] and
+//!   [`StableNeoHookean::from_linear_lame`] (Smith et al. 2018);
 //! - kernels: [`element`] (the quadrature element kernel: energy `sum_q w_q Psi(F_q)`, gradient
 //!   and Hessian of an element of any number of nodes, 4- and 10-node tets), [`tet`] (its
 //!   one-point 4-node case with fixed-size types), [`triangle`] (the area element and `J~` of
 //!   3- and 6-node faces), [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
-//! - [`kinematics`]: `vec`, `cof F = dJ/dF`, `d2J/dF2`, shared by every `J`-based term.
+//! - [`kinematics`]: `vec`, `cof F = dJ/dF`, `d2J/dF2`, shared by every `J`-based term, and
+//!   the isochoric invariants `Ib1 = J^-2/3 I_1`, `Ib2 = J^-4/3 I_2` with their gradients,
+//!   Hessians and the chain rule of a density `W(Ib1, Ib2)`
+//!   ([`kinematics::IsochoricInvariants`]).
 
 mod composed;
 pub mod element;
@@ -39,13 +47,16 @@ pub mod tet;
 pub mod triangle;
 
 pub use composed::{
-    constrained_neo_hookean, quadratic_neo_hookean, standard_neo_hookean, Composed,
-    ConstrainedNeoHookean, QuadraticNeoHookean, StandardNeoHookean,
+    constrained_neo_hookean, quadratic_neo_hookean, stable_neo_hookean, standard_neo_hookean,
+    Composed, ConstrainedNeoHookean, QuadraticNeoHookean, StableNeoHookean, StandardNeoHookean,
 };
 pub use epidermis::{Epidermis, TriangleTerms};
 pub use error::{OutOfDomain, ParameterError};
 pub use material::{Hyperelastic, VolumetricPenalty};
-pub use materials::{BonetWood, DistortionalNeoHookean, FbarNeoHookean, Mooney, StableNeoHookean};
+pub use materials::{
+    BonetWood, DistortionalNeoHookean, DistortionalStableNeoHookean, FbarNeoHookean, Mooney,
+    MooneyRivlin, Ogden, Yeoh,
+};
 pub use parameters::{bulk_modulus, Lame};
 pub use penalties::{LogPenalty, QuadraticPenalty, SheenPenalty};
 pub use projection::project_to_psd;

@@ -333,8 +333,9 @@ fn longest_edge(mesh: &isochor_mesh::TetMesh) -> f64 {
 }
 
 /// Material parameters drawn for the derivative tests: shear modulus, Lame's first
-/// parameter, the `beta` of `U(J; beta)` (Sheen et al. 2021, eq. 13) and the F-bar
-/// extension's `epsilon` (eq. 10-12).
+/// parameter, the `beta` of `U(J; beta)` (Sheen et al. 2021, eq. 13), the F-bar
+/// extension's `epsilon` (eq. 10-12), and the shape of the invariant models relative to `mu`
+/// (Mooney-Rivlin's `c01 / c10`, Yeoh's `c20 / c10` and `c30 / c10`).
 #[derive(Debug, Clone, Copy)]
 pub struct MaterialParams {
     /// Shear modulus `mu` in `[0.1, 10]`.
@@ -345,16 +346,51 @@ pub struct MaterialParams {
     pub beta: f64,
     /// `epsilon` in `[0.01, 0.5]`.
     pub epsilon: f64,
+    /// Mooney-Rivlin `c01 / c10` in `[0, 1]` (fits of rubber give 0 to about 0.5).
+    pub c01_ratio: f64,
+    /// Yeoh `c20 / c10` in `[-0.2, 0.2]` (fits of filled rubber give about -0.05).
+    pub c20_ratio: f64,
+    /// Yeoh `c30 / c10` in `[0, 0.05]` (fits of filled rubber give about 0.003).
+    pub c30_ratio: f64,
+}
+
+impl MaterialParams {
+    /// Mooney-Rivlin `(c10, c01)` with initial shear modulus `2 (c10 + c01) = mu`.
+    pub fn mooney_rivlin(&self) -> (f64, f64) {
+        let c10 = 0.5 * self.mu / (1.0 + self.c01_ratio);
+        (c10, self.c01_ratio * c10)
+    }
+
+    /// Ogden terms `(mu_p, alpha_p)`: the three-term fit of Treloar's data by Ogden 1972
+    /// (`alpha = 1.3, 5, -2`), scaled to the initial shear modulus `1/2 sum mu_p alpha_p = mu`.
+    pub fn ogden(&self) -> [(f64, f64); 3] {
+        let fit = [(0.63, 1.3), (0.0012, 5.0), (-0.01, -2.0)];
+        let mu0 = 0.5 * fit.iter().map(|(m, a)| m * a).sum::<f64>();
+        fit.map(|(m, a)| (m * self.mu / mu0, a))
+    }
+
+    /// Yeoh `(c10, c20, c30)` with initial shear modulus `2 c10 = mu`.
+    pub fn yeoh(&self) -> (f64, f64, f64) {
+        let c10 = 0.5 * self.mu;
+        (c10, self.c20_ratio * c10, self.c30_ratio * c10)
+    }
 }
 
 /// Random [`MaterialParams`] over the ranges documented on its fields.
 pub fn material_params() -> impl Strategy<Value = MaterialParams> {
-    (0.1..10.0f64, 0.05..200.0f64, 0.0..20.0f64, 0.01..0.5f64).prop_map(
-        |(mu, lambda, beta, epsilon)| MaterialParams {
-            mu,
-            lambda,
-            beta,
-            epsilon,
-        },
+    (
+        (0.1..10.0f64, 0.05..200.0f64, 0.0..20.0f64, 0.01..0.5f64),
+        (0.0..1.0f64, -0.2..0.2f64, 0.0..0.05f64),
     )
+        .prop_map(
+            |((mu, lambda, beta, epsilon), (c01_ratio, c20_ratio, c30_ratio))| MaterialParams {
+                mu,
+                lambda,
+                beta,
+                epsilon,
+                c01_ratio,
+                c20_ratio,
+                c30_ratio,
+            },
+        )
 }

@@ -30,9 +30,9 @@ use isochor_constraints::{
 use isochor_energies::element::{self, RestPoints};
 use isochor_energies::triangle::{self, area_element, RestFacePoints};
 use isochor_energies::{
-    constrained_neo_hookean, quadratic_neo_hookean, standard_neo_hookean, tet, BonetWood,
-    DistortionalNeoHookean, Epidermis, FbarNeoHookean, Hyperelastic, Lame, Mooney,
-    StableNeoHookean,
+    constrained_neo_hookean, quadratic_neo_hookean, stable_neo_hookean, standard_neo_hookean, tet,
+    BonetWood, DistortionalNeoHookean, DistortionalStableNeoHookean, Epidermis, FbarNeoHookean,
+    Hyperelastic, Lame, Mooney, MooneyRivlin, Ogden, StableNeoHookean, Yeoh,
 };
 use isochor_mesh::element::{
     deformation_gradient, RestGeometry, TetElement, TetQuadrature, TriElement, TriQuadrature,
@@ -74,12 +74,17 @@ fn record(name: &str, error: f64) {
 /// constrained neo-Hookean included.
 fn materials(p: &Params) -> Vec<Box<dyn Hyperelastic>> {
     let lame = Lame::new(p.mu, p.lambda).expect("Lame parameters");
+    let (mr, yeoh) = (p.mooney_rivlin(), p.yeoh());
     vec![
         Box::new(Mooney::new(p.mu).expect("Mooney")),
         Box::new(DistortionalNeoHookean::new(p.mu).expect("distortional")),
         Box::new(BonetWood::new(p.mu).expect("Bonet-Wood")),
-        Box::new(StableNeoHookean::new(lame).expect("stable")),
+        Box::new(stable_neo_hookean(lame).expect("stable")),
         Box::new(FbarNeoHookean::new(p.mu, p.epsilon).expect("F-bar")),
+        Box::new(DistortionalStableNeoHookean::new(p.mu).expect("distortional stable")),
+        Box::new(MooneyRivlin::new(mr.0, mr.1).expect("Mooney-Rivlin")),
+        Box::new(Yeoh::new(yeoh.0, yeoh.1, yeoh.2).expect("Yeoh")),
+        Box::new(Ogden::new(&p.ogden()).expect("Ogden")),
         Box::new(standard_neo_hookean(lame).expect("standard")),
         Box::new(quadratic_neo_hookean(lame).expect("quadratic")),
         Box::new(constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).expect("constrained")),

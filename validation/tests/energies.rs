@@ -8,10 +8,11 @@
 //! property tests; [`penalty_suite!`] does the same for penalties.
 
 use isochor_energies::{
-    constrained_neo_hookean, kinematics, project_to_psd, quadratic_neo_hookean,
-    standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean, Epidermis,
-    FbarNeoHookean, Hyperelastic, Lame, LogPenalty, Matrix12, Matrix9, Mooney, OutOfDomain,
-    QuadraticPenalty, SheenPenalty, StableNeoHookean, VolumetricPenalty,
+    constrained_neo_hookean, kinematics, project_to_psd, quadratic_neo_hookean, stable_neo_hookean,
+    standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean,
+    DistortionalStableNeoHookean, Epidermis, FbarNeoHookean, Hyperelastic, Lame, LogPenalty,
+    Matrix12, Matrix9, Mooney, MooneyRivlin, Ogden, OutOfDomain, QuadraticPenalty, SheenPenalty,
+    StableNeoHookean, VolumetricPenalty, Yeoh,
 };
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
 use isochor_validation::strategies::{
@@ -283,7 +284,15 @@ macro_rules! density_suite {
 
             #[test]
             fn rest_stability() {
-                let p = Params { mu: 1.7, lambda: 23.0, beta: 3.0, epsilon: 0.1 };
+                let p = Params {
+                    mu: 1.7,
+                    lambda: 23.0,
+                    beta: 3.0,
+                    epsilon: 0.1,
+                    c01_ratio: 0.4,
+                    c20_ratio: -0.1,
+                    c30_ratio: 0.02,
+                };
                 let m = build(&p);
                 let stress = m.pk1(&Matrix3::identity()).unwrap().amax();
                 if $rest {
@@ -297,13 +306,25 @@ macro_rules! density_suite {
 }
 
 // Rest stability as claimed by the papers: standard neo-Hookean (eq. 6 / eq. 4), distortional
-// neo-Hookean (eq. 32), Bonet-Wood (eq. 30), Stable neo-Hookean, F-bar deviatoric (eq. 12) and
-// the composed constrained neo-Hookean are rest stable. Mooney (eq. 29) is not: P(I) = mu I.
+// neo-Hookean (eq. 32), Bonet-Wood (eq. 30), Stable neo-Hookean and its distortional part,
+// F-bar deviatoric (eq. 12), the composed constrained neo-Hookean, and the uncoupled
+// Mooney-Rivlin and Yeoh models are rest stable. Mooney (eq. 29) is not: P(I) = mu I.
 density_suite! {
     mooney => |p| Mooney::new(p.mu).unwrap(), rest_stable = false;
     distortional_neo_hookean => |p| DistortionalNeoHookean::new(p.mu).unwrap(), rest_stable = true;
     bonet_wood => |p| BonetWood::new(p.mu).unwrap(), rest_stable = true;
-    stable_neo_hookean => |p| StableNeoHookean::new(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
+    mooney_rivlin => |p| {
+        let (c10, c01) = p.mooney_rivlin();
+        MooneyRivlin::new(c10, c01).unwrap()
+    }, rest_stable = true;
+    yeoh => |p| {
+        let (c10, c20, c30) = p.yeoh();
+        Yeoh::new(c10, c20, c30).unwrap()
+    }, rest_stable = true;
+    ogden => |p| Ogden::new(&p.ogden()).unwrap(), rest_stable = true;
+    distortional_stable_neo_hookean => |p| DistortionalStableNeoHookean::new(p.mu).unwrap(),
+        rest_stable = true;
+    stable_neo_hookean => |p| stable_neo_hookean(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
         rest_stable = true;
     stable_neo_hookean_linear_lame =>
         |p| StableNeoHookean::from_linear_lame(Lame::new(p.mu, p.lambda).unwrap()).unwrap(),
@@ -324,7 +345,8 @@ fn invertible_densities_are_defined_everywhere() {
     let lame = Lame::new(1.0, 10.0).unwrap();
     let invertible: Vec<Box<dyn Hyperelastic>> = vec![
         Box::new(Mooney::new(1.0).unwrap()),
-        Box::new(StableNeoHookean::new(lame).unwrap()),
+        Box::new(stable_neo_hookean(lame).unwrap()),
+        Box::new(DistortionalStableNeoHookean::new(1.0).unwrap()),
         Box::new(FbarNeoHookean::new(1.0, 0.1).unwrap()),
         Box::new(constrained_neo_hookean(1.0, 10.0, 2.0, 0.1).unwrap()),
     ];
@@ -344,6 +366,8 @@ fn invertible_densities_are_defined_everywhere() {
     let singular: Vec<Box<dyn Hyperelastic>> = vec![
         Box::new(DistortionalNeoHookean::new(1.0).unwrap()),
         Box::new(BonetWood::new(1.0).unwrap()),
+        Box::new(MooneyRivlin::new(0.3, 0.2).unwrap()),
+        Box::new(Yeoh::new(0.5, -0.05, 0.01).unwrap()),
         Box::new(standard_neo_hookean(lame).unwrap()),
         Box::new(quadratic_neo_hookean(lame).unwrap()),
     ];
@@ -369,6 +393,288 @@ fn fbar_equals_bonet_wood_above_epsilon() {
     );
     assert!((fbar.pk1(&f).unwrap() - bw.pk1(&f).unwrap()).amax() < 1e-13);
     assert!((fbar.pk1_derivative(&f).unwrap() - bw.pk1_derivative(&f).unwrap()).amax() < 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Invariant models and Stable neo-Hookean: closed forms
+
+/// Cauchy stress `sigma = P F^T / J`.
+fn cauchy<M: Hyperelastic + ?Sized>(m: &M, f: &Matrix3<f64>) -> Matrix3<f64> {
+    m.pk1(f).unwrap() * f.transpose() / f.determinant()
+}
+
+/// Stretches `l` in `[0.5, 3]` (26 points, `l = 1` included).
+fn uniaxial_stretches() -> impl Iterator<Item = f64> {
+    (0..=25).map(|k| 0.5 + 0.1 * k as f64)
+}
+
+/// Homogeneous incompressible uniaxial stretch `F = diag(l, l^-1/2, l^-1/2)`: the Cauchy
+/// stress difference `sigma11 - sigma22` (free of the pressure, which a purely distortional
+/// density leaves undetermined) equals `l Pnom(l)`, with the closed-form nominal stress
+/// `Pnom` of each model, to 1e-12 of `max(|l Pnom|, mu)`.
+#[test]
+fn uniaxial_stress_matches_closed_forms() {
+    type Nominal = Box<dyn Fn(f64) -> f64>;
+    let mut cases: Vec<(Box<dyn Hyperelastic>, f64, Nominal)> = Vec::new();
+    for mu in [0.3, 2.0] {
+        cases.push((
+            Box::new(BonetWood::new(mu).unwrap()),
+            mu,
+            Box::new(move |l: f64| mu * (l - l.powi(-2))),
+        ));
+        // Smith et al. 2018: at J = 1 the distortional part adds the hydrostatic -3 mu/4 I.
+        cases.push((
+            Box::new(DistortionalStableNeoHookean::new(mu).unwrap()),
+            0.75 * mu,
+            Box::new(move |l: f64| {
+                let i1 = l * l + 2.0 / l;
+                mu * (1.0 - 1.0 / (i1 + 1.0)) * (l - l.powi(-2))
+            }),
+        ));
+    }
+    for (c10, c01) in [(0.5, 0.0), (0.3, 0.2), (0.2, 0.2), (1.0, -0.3)] {
+        cases.push((
+            Box::new(MooneyRivlin::new(c10, c01).unwrap()),
+            2.0 * (c10 + c01),
+            Box::new(move |l: f64| 2.0 * (l - l.powi(-2)) * (c10 + c01 / l)),
+        ));
+    }
+    for (c10, c20, c30) in [(0.5, 0.0, 0.0), (0.298, -0.014, 8.6e-4), (0.5, 0.1, 0.0)] {
+        cases.push((
+            Box::new(Yeoh::new(c10, c20, c30).unwrap()),
+            2.0 * c10,
+            Box::new(move |l: f64| {
+                let x = l * l + 2.0 / l - 3.0;
+                2.0 * (l - l.powi(-2)) * (c10 + 2.0 * c20 * x + 3.0 * c30 * x * x)
+            }),
+        ));
+    }
+    for terms in [
+        vec![(0.63, 1.3), (0.0012, 5.0), (-0.01, -2.0)],
+        vec![(1.0, 2.0)],
+        vec![(0.4, 2.0), (-0.2, -2.0)],
+        vec![(0.2, 0.5), (0.05, 8.0)],
+    ] {
+        let ogden = Ogden::new(&terms).unwrap();
+        let mu0 = ogden.mu();
+        cases.push((
+            Box::new(ogden),
+            mu0,
+            Box::new(move |l: f64| {
+                terms
+                    .iter()
+                    .map(|&(m, a)| m * (l.powf(a - 1.0) - l.powf(-0.5 * a - 1.0)))
+                    .sum()
+            }),
+        ));
+    }
+    let mut worst: f64 = 0.0;
+    for (m, mu, nominal) in &cases {
+        for l in uniaxial_stretches() {
+            let t = 1.0 / l.sqrt();
+            let f = Matrix3::from_diagonal(&Vector3::new(l, t, t));
+            let sigma = cauchy(m.as_ref(), &f);
+            let expected = l * nominal(l);
+            let error = (sigma[(0, 0)] - sigma[(1, 1)] - expected).abs() / expected.abs().max(*mu);
+            worst = worst.max(error);
+            assert!(
+                error <= 1e-12,
+                "{} at l = {l}: sigma11 - sigma22 = {:e}, expected {expected:e}",
+                m.name(),
+                sigma[(0, 0)] - sigma[(1, 1)]
+            );
+            // The transverse directions are free of shear and equal.
+            assert!((sigma[(1, 1)] - sigma[(2, 2)]).abs() <= 1e-12 * expected.abs().max(*mu));
+        }
+    }
+    eprintln!(
+        "uniaxial: largest relative error {worst:.1e} over {} models",
+        cases.len()
+    );
+}
+
+/// Small simple shear `F = I + gamma e1 e2^T`, `gamma = 1e-6`: `sigma12 / gamma` is the
+/// initial shear modulus of each density, to 1e-6 relative (the `O(gamma^2)` terms are 1e-12;
+/// the rounding of `P` is about `eps mu / gamma ~ 1e-10`).
+#[test]
+fn small_shear_gives_the_initial_shear_modulus() {
+    let gamma = 1e-6;
+    let mut f = Matrix3::identity();
+    f[(0, 1)] = gamma;
+    let lame = Lame::new(1.3, 40.0).unwrap();
+    let cases: Vec<(Box<dyn Hyperelastic>, f64)> = vec![
+        (Box::new(Mooney::new(1.3).unwrap()), 1.3),
+        (Box::new(DistortionalNeoHookean::new(1.3).unwrap()), 1.3),
+        (Box::new(BonetWood::new(1.3).unwrap()), 1.3),
+        (Box::new(FbarNeoHookean::new(1.3, 0.1).unwrap()), 1.3),
+        (Box::new(MooneyRivlin::new(0.45, 0.2).unwrap()), 1.3),
+        (Box::new(MooneyRivlin::new(0.8, -0.15).unwrap()), 1.3),
+        (Box::new(Yeoh::new(0.65, -0.06, 0.004).unwrap()), 1.3),
+        (
+            Box::new(Ogden::new(&[(1.0, 2.0), (-0.3, -1.0)]).unwrap()),
+            1.15,
+        ),
+        (
+            Box::new(Ogden::new(&[(0.63, 1.3), (0.0012, 5.0), (-0.01, -2.0)]).unwrap()),
+            0.4225,
+        ),
+        // The energy's mu times 3/4 (Smith et al. 2018, sec. 3.4).
+        (
+            Box::new(DistortionalStableNeoHookean::new(1.3).unwrap()),
+            0.975,
+        ),
+        (Box::new(stable_neo_hookean(lame).unwrap()), 0.975),
+        (
+            Box::new(StableNeoHookean::from_linear_lame(lame).unwrap()),
+            1.3,
+        ),
+        (Box::new(standard_neo_hookean(lame).unwrap()), 1.3),
+    ];
+    for (m, mu0) in &cases {
+        let measured = cauchy(m.as_ref(), &f)[(0, 1)] / gamma;
+        let error = (measured - mu0).abs() / mu0;
+        assert!(
+            error <= 1e-6,
+            "{}: sigma12 / gamma = {measured}, expected {mu0}",
+            m.name()
+        );
+    }
+}
+
+/// `F = Q diag(l, l (1 + d1), l (1 + d2)) R` for rotations `Q`, `R`, `l` in `[0.3, 3]` and
+/// relative gaps `d1`, `d2` each 0 or `+-1e-12 .. +-1e-3` (log-uniform): equal and nearly equal
+/// principal stretches.
+fn nearly_equal_stretches() -> impl Strategy<Value = Matrix3<f64>> {
+    let gap = || {
+        prop_oneof![
+            Just(0.0),
+            (-12.0..-3.0f64, proptest::bool::ANY).prop_map(|(e, negative)| if negative {
+                -(10f64.powf(e))
+            } else {
+                10f64.powf(e)
+            }),
+        ]
+    };
+    (rotation(), rotation(), 0.3..3.0f64, gap(), gap()).prop_map(|(q, r, l, d1, d2)| {
+        q * Matrix3::from_diagonal(&Vector3::new(l, l * (1.0 + d1), l * (1.0 + d2))) * r
+    })
+}
+
+/// `|a - b|` in the max norm over `max(|a|, |b|, floor)`.
+fn matrix_error<const R: usize, const C: usize>(
+    a: &nalgebra::SMatrix<f64, R, C>,
+    b: &nalgebra::SMatrix<f64, R, C>,
+    floor: f64,
+) -> f64 {
+    (a - b).amax() / a.amax().max(b.amax()).max(floor)
+}
+
+/// `|a - b| / max(|a|, |b|, floor)` for `a`, `b` `Psi`, `P`, `dP/dF` of two densities at `f`.
+fn density_difference<A: Hyperelastic, B: Hyperelastic>(
+    a: &A,
+    b: &B,
+    f: &Matrix3<f64>,
+    floor: f64,
+) -> [f64; 3] {
+    let (ea, eb) = (a.energy_density(f).unwrap(), b.energy_density(f).unwrap());
+    [
+        (ea - eb).abs() / ea.abs().max(eb.abs()).max(floor),
+        matrix_error(&a.pk1(f).unwrap(), &b.pk1(f).unwrap(), floor),
+        matrix_error(
+            &a.pk1_derivative(f).unwrap(),
+            &b.pk1_derivative(f).unwrap(),
+            floor,
+        ),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Mooney-Rivlin with `c01 = 0` and Yeoh with `c20 = c30 = 0` are Bonet-Wood with
+    /// `mu = 2 c10`: energy, stress and tangent agree to 1e-12 of their size (floor `mu`).
+    #[test]
+    fn invariant_models_reduce_to_bonet_wood(
+        p in params(),
+        f in prop_oneof![with_determinant(0.05, 20.0, false), with_determinant(5e-4, 2e-3, false)],
+    ) {
+        let bw = BonetWood::new(p.mu).unwrap();
+        let mr = MooneyRivlin::new(0.5 * p.mu, 0.0).unwrap();
+        let yeoh = Yeoh::new(0.5 * p.mu, 0.0, 0.0).unwrap();
+        for error in density_difference(&mr, &bw, &f, p.mu)
+            .into_iter()
+            .chain(density_difference(&yeoh, &bw, &f, p.mu))
+        {
+            prop_assert!(error <= 1e-12, "relative difference {error:e}");
+        }
+    }
+
+    /// Ogden with one term `(mu, 2)` is Bonet-Wood, and with `(2 c10, 2), (-2 c01, -2)`
+    /// Mooney-Rivlin (`sum lb_i^-2 = Ib2`): energy, stress and tangent agree to 1e-12 of their
+    /// size (floor `mu`), at general and at equal or nearly equal stretches.
+    #[test]
+    fn ogden_reduces_to_invariant_models(
+        p in params(),
+        f in prop_oneof![
+            with_determinant(0.05, 20.0, false),
+            with_determinant(5e-4, 2e-3, false),
+            nearly_equal_stretches(),
+        ],
+    ) {
+        let (c10, c01) = p.mooney_rivlin();
+        let one_term = Ogden::new(&[(p.mu, 2.0)]).unwrap();
+        let two_terms = Ogden::new(&[(2.0 * c10, 2.0), (-2.0 * c01, -2.0)]).unwrap();
+        let bw = BonetWood::new(p.mu).unwrap();
+        let mr = MooneyRivlin::new(c10, c01).unwrap();
+        for error in density_difference(&one_term, &bw, &f, p.mu)
+            .into_iter()
+            .chain(density_difference(&two_terms, &mr, &f, p.mu))
+        {
+            prop_assert!(error <= 1e-12, "relative difference {error:e}");
+        }
+    }
+
+    /// The Ogden tangent at equal and nearly equal principal stretches (relative gaps from 0 to
+    /// 1e-3, where `1 / (l_i^2 - l_j^2)` formulas lose every digit) against differences.
+    #[test]
+    fn ogden_derivatives_at_nearly_equal_stretches(p in params(), f in nearly_equal_stretches()) {
+        check_derivatives(&Ogden::new(&p.ogden()).unwrap(), &f, p.mu)?;
+    }
+
+    /// Stable neo-Hookean as `Composed<DistortionalStableNeoHookean, QuadraticPenalty>` against
+    /// eq. 14 of Smith et al. 2018 written out: `Psi = mu/2 (I_C - 3) + lambda/2 (J - alpha)^2
+    /// - mu/2 log(I_C + 1)` minus its rest value, `P = mu (1 - 1/(I_C + 1)) F
+    /// + lambda (J - alpha) cof F` and its tangent, to 1e-12 of their size (floor `mu`),
+    /// inverted `F` included.
+    #[test]
+    fn stable_neo_hookean_is_eq_14(
+        p in params(),
+        f in prop_oneof![
+            with_determinant(0.05, 20.0, false),
+            with_determinant(5e-4, 2e-3, false),
+            with_determinant(0.05, 20.0, true),
+        ],
+    ) {
+        let (mu, lambda) = (p.mu, p.lambda);
+        let m = stable_neo_hookean(Lame::new(mu, lambda).unwrap()).unwrap();
+        let alpha = 1.0 + 0.75 * mu / lambda;
+        let (ic, j) = (f.norm_squared(), f.determinant());
+        let eq14 = |ic: f64, j: f64| {
+            0.5 * mu * (ic - 3.0) + 0.5 * lambda * (j - alpha).powi(2) - 0.5 * mu * (ic + 1.0).ln()
+        };
+        let psi = eq14(ic, j) - eq14(3.0, 1.0);
+        let scale = psi.abs().max(eq14(ic, j).abs()).max(mu);
+        prop_assert!((m.energy_density(&f).unwrap() - psi).abs() <= 1e-12 * scale);
+        let cof = kinematics::cofactor(&f);
+        let stress = f * (mu * (1.0 - 1.0 / (ic + 1.0))) + cof * (lambda * (j - alpha));
+        prop_assert!(matrix_error(&m.pk1(&f).unwrap(), &stress, mu) <= 1e-12);
+        let (fv, g) = (kinematics::flatten(&f), kinematics::flatten(&cof));
+        let tangent = Matrix9::identity() * (mu * (1.0 - 1.0 / (ic + 1.0)))
+            + fv * fv.transpose() * (2.0 * mu / (ic + 1.0).powi(2))
+            + g * g.transpose() * lambda
+            + kinematics::det_hessian(&f) * (lambda * (j - alpha));
+        prop_assert!(matrix_error(&m.pk1_derivative(&f).unwrap(), &tangent, mu) <= 1e-12);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -530,7 +836,7 @@ proptest! {
         let lame = Lame::new(p.mu, p.lambda).unwrap();
         let materials: [&dyn Hyperelastic; 3] = [
             &standard_neo_hookean(lame).unwrap(),
-            &StableNeoHookean::new(lame).unwrap(),
+            &stable_neo_hookean(lame).unwrap(),
             &constrained_neo_hookean(p.mu, p.lambda, p.beta, p.epsilon).unwrap(),
         ];
         for m in materials {
@@ -747,6 +1053,23 @@ fn bad_parameters_are_named_errors() {
     assert!((lame.lambda - 1e5 * 0.45 / (1.45 * 0.1)).abs() < 1e-9 * lame.lambda);
     assert_eq!(Mooney::new(0.0).unwrap_err().name, "mu");
     assert_eq!(BonetWood::new(-1.0).unwrap_err().name, "mu");
+    assert_eq!(MooneyRivlin::new(0.1, -0.2).unwrap_err().name, "c01");
+    assert_eq!(MooneyRivlin::new(f64::NAN, 0.2).unwrap_err().name, "c10");
+    assert_eq!(Yeoh::new(-0.1, 0.0, 0.0).unwrap_err().name, "c10");
+    assert_eq!(Yeoh::new(0.1, f64::INFINITY, 0.0).unwrap_err().name, "c20");
+    assert_eq!(
+        DistortionalStableNeoHookean::new(0.0).unwrap_err().name,
+        "mu"
+    );
+    assert_eq!(
+        stable_neo_hookean(Lame {
+            mu: 1.0,
+            lambda: -1.0
+        })
+        .unwrap_err()
+        .name,
+        "lambda"
+    );
     assert_eq!(FbarNeoHookean::new(1.0, 0.0).unwrap_err().name, "epsilon");
     assert_eq!(SheenPenalty::new(f64::NAN).unwrap_err().name, "beta");
     assert_eq!(

@@ -1,14 +1,15 @@
 //! The uncoupled distortional energy of Bonet and Wood, eq. 30 of Francu et al. 2021.
 
-use super::scaled_invariant::{self, Factor};
-use crate::kinematics::positive_determinant;
+use crate::kinematics::{InvariantPartials, IsochoricInvariants};
 use crate::parameters::require_mu;
 use crate::{Hyperelastic, Matrix9, OutOfDomain, ParameterError};
 use nalgebra::Matrix3;
 
-/// `Psi = mu/2 (J^-2/3 I_C - 3)` (eq. 30) with its exact stress and tangent (not the
-/// approximation `P ~ mu J^-2/3 F` of eq. 31). Rest stable and purely distortional
-/// (homogeneous of order 0 in `J`); undefined ([`OutOfDomain`]) for `J <= 0`.
+/// `Psi = mu/2 (Ib1 - 3)`, `Ib1 = J^-2/3 I_C` (eq. 30), with its exact stress and tangent (not
+/// the approximation `P ~ mu J^-2/3 F` of eq. 31). Shear modulus `mu`. Rest stable and purely
+/// distortional (homogeneous of order 0 in `J`); undefined ([`OutOfDomain`]) for `J <= 0`.
+/// The uncoupled neo-Hookean model: [`MooneyRivlin`](crate::MooneyRivlin) with
+/// `c10 = mu/2`, `c01 = 0` and [`Yeoh`](crate::Yeoh) with `c10 = mu/2`, `c20 = c30 = 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BonetWood {
     mu: f64,
@@ -27,16 +28,16 @@ impl BonetWood {
         self.mu
     }
 
-    /// `a = J^-2/3`, `a' = -2/3 a / J`, `a'' = 10/9 a / J^2`.
-    fn factor(&self, f: &Matrix3<f64>) -> Result<Factor, OutOfDomain> {
-        let j = positive_determinant(self.name(), f)?;
-        let c = j.cbrt();
-        let a = 1.0 / (c * c);
-        Ok(Factor {
-            a,
-            da: -2.0 / 3.0 * a / j,
-            dda: 10.0 / 9.0 * a / (j * j),
-        })
+    /// `dW/dIb1 = mu/2`: the chain rule of [`IsochoricInvariants`].
+    fn partials(&self) -> InvariantPartials {
+        InvariantPartials {
+            w1: 0.5 * self.mu,
+            ..InvariantPartials::default()
+        }
+    }
+
+    fn invariants(&self, f: &Matrix3<f64>) -> Result<IsochoricInvariants, OutOfDomain> {
+        IsochoricInvariants::new(self.name(), f)
     }
 }
 
@@ -46,14 +47,14 @@ impl Hyperelastic for BonetWood {
     }
 
     fn energy_density(&self, f: &Matrix3<f64>) -> Result<f64, OutOfDomain> {
-        Ok(scaled_invariant::energy(self.mu, f, self.factor(f)?))
+        Ok(0.5 * self.mu * (self.invariants(f)?.ib1() - 3.0))
     }
 
     fn pk1(&self, f: &Matrix3<f64>) -> Result<Matrix3<f64>, OutOfDomain> {
-        Ok(scaled_invariant::pk1(self.mu, f, self.factor(f)?))
+        Ok(self.invariants(f)?.stress(&self.partials()))
     }
 
     fn pk1_derivative(&self, f: &Matrix3<f64>) -> Result<Matrix9, OutOfDomain> {
-        Ok(scaled_invariant::tangent(self.mu, f, self.factor(f)?))
+        Ok(self.invariants(f)?.tangent(&self.partials()))
     }
 }

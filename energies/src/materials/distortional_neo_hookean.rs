@@ -5,7 +5,8 @@ use crate::parameters::require_mu;
 use crate::{Hyperelastic, Matrix9, OutOfDomain, ParameterError};
 use nalgebra::Matrix3;
 
-/// `Psi = mu/2 (I_C - 3) - mu log J` (eq. 32): `P = mu (F - F^-T)`. Rest stable; undefined
+/// `Psi = mu/2 (I_C - 3) - mu log J` (eq. 32): `P = mu (F - F^-T)`, with shear modulus `mu`
+/// (the initial shear modulus). Rest stable; undefined
 /// ([`OutOfDomain`]) for `J <= 0`. With `lambda (log J)^2 / 2` it is the standard
 /// neo-Hookean energy (see [`standard_neo_hookean`](crate::standard_neo_hookean)).
 #[derive(Debug, Clone, Copy, PartialEq)]

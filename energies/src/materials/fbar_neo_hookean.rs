@@ -1,6 +1,6 @@
 //! The F-bar deviatoric neo-Hookean energy with a C2 extension, eq. 10-12 of Sheen et al. 2021.
 
-use super::scaled_invariant::{self, Factor};
+use crate::kinematics::{cofactor, first_invariant, flatten, unflatten, VolumeFactor};
 use crate::parameters::{require, require_mu};
 use crate::{Hyperelastic, Matrix9, OutOfDomain, ParameterError};
 use nalgebra::Matrix3;
@@ -14,7 +14,8 @@ use nalgebra::Matrix3;
 ///
 /// The extension matches value, slope and curvature at `epsilon` (C2) and stays positive, so
 /// the energy is defined for every `J`, inverted elements included. Above `epsilon` it equals
-/// Bonet-Wood (eq. 30 of Francu et al. 2021). Rest stable for `epsilon < 1`.
+/// Bonet-Wood (eq. 30 of Francu et al. 2021). Shear modulus `mu` (the initial shear
+/// modulus); rest stable for `epsilon < 1`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FbarNeoHookean {
     mu: f64,
@@ -64,9 +65,9 @@ impl FbarNeoHookean {
     }
 
     /// `a = alpha~^2`, `a' = 2 alpha~ alpha~'`, `a'' = 2 (alpha~'^2 + alpha~ alpha~'')`.
-    fn factor(&self, f: &Matrix3<f64>) -> Factor {
+    fn factor(&self, f: &Matrix3<f64>) -> VolumeFactor {
         let (al, d1, d2) = self.alpha(f.determinant());
-        Factor {
+        VolumeFactor {
             a: al * al,
             da: 2.0 * al * d1,
             dda: 2.0 * (d1 * d1 + al * d2),
@@ -80,15 +81,29 @@ impl Hyperelastic for FbarNeoHookean {
     }
 
     fn energy_density(&self, f: &Matrix3<f64>) -> Result<f64, OutOfDomain> {
-        Ok(scaled_invariant::energy(self.mu, f, self.factor(f)))
+        Ok(0.5 * self.mu * (self.factor(f).a * first_invariant(f) - 3.0))
     }
 
+    /// `P = mu/2 d(a I_C)/dF = mu/2 (2 a F + a' I_C cof F)`, `a = alpha~^2`.
     fn pk1(&self, f: &Matrix3<f64>) -> Result<Matrix3<f64>, OutOfDomain> {
-        Ok(scaled_invariant::pk1(self.mu, f, self.factor(f)))
+        let g = flatten(&cofactor(f));
+        let p = self
+            .factor(f)
+            .scaled_gradient(first_invariant(f), &(flatten(f) * 2.0), &g);
+        Ok(unflatten(&(p * (0.5 * self.mu))))
     }
 
+    /// `dP/dF = mu/2 d2(a I_C)/dF2` ([`VolumeFactor::scaled_hessian`] with `d2I_C = 2 I`).
     fn pk1_derivative(&self, f: &Matrix3<f64>) -> Result<Matrix9, OutOfDomain> {
-        Ok(scaled_invariant::tangent(self.mu, f, self.factor(f)))
+        let g = flatten(&cofactor(f));
+        let h = self.factor(f).scaled_hessian(
+            f,
+            first_invariant(f),
+            &(flatten(f) * 2.0),
+            &Matrix9::from_diagonal_element(2.0),
+            &g,
+        );
+        Ok(h * (0.5 * self.mu))
     }
 
     fn is_defined_at(&self, _j: f64) -> bool {

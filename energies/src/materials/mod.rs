@@ -2,13 +2,18 @@
 
 mod bonet_wood;
 mod distortional_neo_hookean;
+mod distortional_stable_neo_hookean;
 mod fbar_neo_hookean;
 mod mooney;
-mod scaled_invariant;
-mod stable_neo_hookean;
+mod mooney_rivlin;
+mod ogden;
+mod yeoh;
 
 pub use bonet_wood::BonetWood;
 pub use distortional_neo_hookean::DistortionalNeoHookean;
+pub use distortional_stable_neo_hookean::DistortionalStableNeoHookean;
 pub use fbar_neo_hookean::FbarNeoHookean;
 pub use mooney::Mooney;
-pub use stable_neo_hookean::StableNeoHookean;
+pub use mooney_rivlin::MooneyRivlin;
+pub use ogden::Ogden;
+pub use yeoh::Yeoh;

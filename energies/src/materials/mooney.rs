@@ -4,7 +4,8 @@ use crate::parameters::require_mu;
 use crate::{Hyperelastic, Matrix9, OutOfDomain, ParameterError};
 use nalgebra::Matrix3;
 
-/// `Psi = mu/2 (I_C - 3)` (eq. 29): `P = mu F`, `dP/dF = mu I`. Defined for every `F`.
+/// `Psi = mu/2 (I_C - 3)` (eq. 29): `P = mu F`, `dP/dF = mu I`, with shear modulus `mu` (the
+/// initial shear modulus under a volume constraint). Defined for every `F`.
 ///
 /// Not rest stable on its own (`P(I) = mu I`): it relies on a volumetric term or constraint
 /// to balance the stress at rest.
