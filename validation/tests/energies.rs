@@ -40,8 +40,8 @@ fn to_mat(v: &DVector<f64>) -> Matrix3<f64> {
 ///
 /// The step is `STEP` times the size of `F`, but never below `STEP`. A central difference errs
 /// by the truncation `h^2 |Psi'''| / 6` plus the rounding `eps |Psi| / h`. Near-singular `F`
-/// (`det F ~ 1e-3`, entries ~0.1) keeps `Psi` large (Stable neo-Hookean's constant
-/// `lambda alpha^2 / 2` reaches 1e3 `mu`) while `P` is small, so a step of `1e-7` made the
+/// (`det F ~ 1e-3`, entries ~0.1) keeps `Psi` large (Stable neo-Hookean's
+/// `lambda/2 (J - 1)^2 ~ lambda/2` reaches 1e3 `mu`) while `P` is small, so a step of `1e-7` made the
 /// rounding 2e-7 of the floor, a fifth of TOLERANCE (measured); the floor `h >= 1e-6` brings
 /// it to 2e-8, and the truncation stays near `(h / sigma_min)^2 ~ 1e-9` for the smallest
 /// singular value `sigma_min ~ 0.03` of those `F` (the largest tangent error measured over
