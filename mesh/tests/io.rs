@@ -198,6 +198,12 @@ fn awkward_fields(points: &[Vec3], cells: usize, nan: f64) -> (Vec<Field>, Vec<F
     let cell_data = vec![
         Field::scalar("J", (0..cells).map(|e| 1.0 - value(e) * 1e-17).collect()),
         Field::int("zone", (0..cells).map(|e| i32::MIN + e as i32).collect()),
+        Field::tensor(
+            "stress",
+            (0..cells)
+                .map(|e| nalgebra::Matrix3::from_fn(|i, j| value(e) * (3 * i + j) as f64 - 1.0))
+                .collect(),
+        ),
     ];
     (point_data, cell_data)
 }
@@ -212,6 +218,11 @@ fn bits(field: &Field) -> (String, Vec<u64>) {
             .map(f64::to_bits)
             .collect(),
         FieldValues::Int(v) => v.iter().map(|&x| x as u64).collect(),
+        FieldValues::Tensor(v) => v
+            .iter()
+            .flat_map(|t| t.iter().copied().collect::<Vec<_>>())
+            .map(f64::to_bits)
+            .collect(),
     };
     (field.name.clone(), values)
 }

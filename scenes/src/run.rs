@@ -87,7 +87,7 @@ fn execute(
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
     let built = problem::build(scene)?;
     let mesh = built.problem.mesh.clone();
-    let material = built.problem.material;
+    let material = &built.problem.material;
     let kappa = material.mixed_kappa().ok();
     let zone_ids = match &built.problem.zones {
         Some(z) => Some(z.tet_zone_ids(mesh.num_elements())?),

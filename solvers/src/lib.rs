@@ -28,8 +28,8 @@ pub use error::SolverError;
 /// `Material` can be written without depending on `isochor-constraints`).
 pub use isochor_constraints::NodalCompliance;
 pub use model::{
-    Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, Method, Motion, Obstacle,
-    Problem, Region, Regions, ScheduledLoad, Shape, ZonalEnergy,
+    Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, MaterialModel, Method,
+    Motion, Obstacle, Problem, Region, Regions, ScheduledLoad, Shape, ZonalEnergy,
 };
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{

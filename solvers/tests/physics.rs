@@ -52,7 +52,7 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         .into()],
         mesh: mesh.into(),
         method: Method::Standard,
-        material,
+        material: material.clone(),
         regions: Vec::new(),
         zones: None,
         obstacles: Vec::new(),
@@ -218,7 +218,7 @@ fn von_mises_stress_of_an_isochoric_stretch() {
         let problem = Problem {
             mesh: mesh.clone().into(),
             method,
-            material,
+            material: material.clone(),
             regions: Vec::new(),
             zones: None,
             dirichlet: vec![],

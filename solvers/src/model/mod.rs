@@ -25,8 +25,8 @@ mod supports;
 use densities::elastic_density;
 pub use dofs::Dofs;
 pub use problem::{
-    Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, Region,
-    ScheduledLoad, Shape, ZonalEnergy,
+    Dirichlet, Epidermis, Kappa, Load, Material, MaterialModel, Method, Motion, Obstacle, Problem,
+    Region, ScheduledLoad, Shape, ZonalEnergy,
 };
 pub use regions::Regions;
 pub use schedule::{Curve, LoadLevel};
