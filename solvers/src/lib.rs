@@ -27,14 +27,18 @@ pub use error::SolverError;
 /// How [`Material::nodal_compliance`] integrates the nodal compliance (re-exported so that a
 /// `Material` can be written without depending on `isochor-constraints`).
 pub use isochor_constraints::NodalCompliance;
+/// The mesh types a [`Problem`] holds and a [`State`] is read on.
+pub use isochor_mesh::{ElementMesh, TetMesh, Vec3, Zones};
 pub use model::{
     Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, Method, Motion, Obstacle,
-    Problem, ScheduledLoad, Shape, ZonalEnergy,
+    Problem, ProblemBuilder, ScheduledLoad, Shape, ZonalEnergy,
 };
 pub use settings::{LinearSolver, Settings};
 pub use simulation::{
-    Adaptive, Checkpoint, Energies, Frame, Linearizer, NewtonSystem, Progress, RunSummary,
-    Simulation, SimulationFailure, State, StepControl, Stepping,
+    Adaptive, Checkpoint, Energies, Frame, Linearizer, Matrices, NewtonSystem, Progress,
+    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping,
 };
 pub use simulation::{IterationReport, StepReport, Timings};
+/// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
+pub use sprs;
 pub use terms::ContactSummary;

@@ -18,11 +18,14 @@ use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
 
+mod builder;
 mod dofs;
 mod problem;
 mod schedule;
 mod supports;
+mod validate;
 
+pub use builder::ProblemBuilder;
 pub use dofs::Dofs;
 pub use problem::{
     Dirichlet, Epidermis, Kappa, Load, Material, Method, Motion, Obstacle, Problem, ScheduledLoad,
