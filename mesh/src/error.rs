@@ -59,6 +59,8 @@ pub enum MeshError {
         "selection \"{name}\" is empty: its region contains no vertex or boundary face of the mesh"
     )]
     EmptySelection { name: String },
+    #[error("point {point:?} lies outside the mesh")]
+    PointOutside { point: [f64; 3] },
     #[error("zone {zone} is empty")]
     EmptyZone { zone: usize },
     #[error("invalid {name} = {value}: {reason}")]
