@@ -155,6 +155,17 @@ impl Material {
     /// Parameters from Young's modulus and Poisson's ratio, with the papers' defaults
     /// elsewhere: `kappa` = bulk modulus, zonal `lambda` equivalent to `nu = 0.45`,
     /// `beta = 1`, `epsilon = 0.1`, dual base `nu = 0.4`, no epidermis.
+    ///
+    /// ```
+    /// use isochor_solvers::Material;
+    ///
+    /// // A silicone rubber in SI units: E = 100 kPa, incompressible, 1070 kg/m^3.
+    /// let silicone = Material::from_young_poisson(1e5, 0.5, 1070.0)?;
+    /// assert!((silicone.mu - 1e5 / 3.0).abs() < 1e-9);
+    /// assert_eq!(silicone.mixed_kappa()?, f64::INFINITY); // C = 0 in the mixed methods
+    /// assert!(Material::from_young_poisson(1e5, 0.6, 1070.0).is_err());
+    /// # Ok::<(), isochor_energies::ParameterError>(())
+    /// ```
     pub fn from_young_poisson(young: f64, nu: f64, density: f64) -> Result<Self, ParameterError> {
         let mu = Lame::shear_modulus(young, nu)?;
         let zonal_lambda = Lame::from_young_poisson(young, 0.45)?.lambda;
