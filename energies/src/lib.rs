@@ -25,6 +25,8 @@
 //!   3- and 6-node faces), [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
 //! - [`kinematics`]: `vec`, `cof F = dJ/dF`, `d2J/dF2`, shared by every `J`-based term.
 
+#![deny(missing_docs)]
+
 mod composed;
 pub mod element;
 mod epidermis;

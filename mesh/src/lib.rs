@@ -6,6 +6,8 @@
 //! ([`element`]: reference elements, quadrature, isoparametric rest geometry, [`ElementMesh`]),
 //! mesh generators, [`probes`] of a deformed state, and file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
 
+#![deny(missing_docs)]
+
 mod adjacency;
 mod closest;
 pub mod element;

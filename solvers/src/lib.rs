@@ -14,6 +14,8 @@
 //! | [`linear`] | sparse Cholesky, KKT `LDL^T`, CG and MINRES, orderings and shifts |
 //! | `simulation` | the stepping driver ([`Simulation`]: quasi-static and implicit Euler) and its reports |
 
+#![deny(missing_docs)]
+
 mod assembly;
 mod error;
 pub mod linear;

@@ -29,12 +29,22 @@ use std::time::{Duration, Instant};
 pub enum Stepping {
     /// Loads and prescribed motions follow the load parameter from 0 to 1; the levels
     /// `k / steps` are the frames, and `control` chooses the increments between them.
-    QuasiStatic { steps: usize, control: StepControl },
+    QuasiStatic {
+        /// Number of frames: the levels `k / steps`, `k = 1..=steps`.
+        steps: usize,
+        /// How the increments between frames are chosen.
+        control: StepControl,
+    },
     /// Implicit Euler (eq. 20-21) with time step `dt` for `frames` steps; prescribed motions
     /// follow `time / (dt * frames)`, loads are constant (unless they follow curves). A failed
     /// step is retried in substeps (`dt/2`, `dt/4`, ... down to `dt/1024`) that end on the
     /// frame's time.
-    ImplicitEuler { dt: f64, frames: usize },
+    ImplicitEuler {
+        /// Time step, in seconds.
+        dt: f64,
+        /// Number of steps (each a frame).
+        frames: usize,
+    },
 }
 
 impl Stepping {
