@@ -13,6 +13,16 @@
 //! | `nonlinear` | Newton, saddle-point Newton and dual ascent, and the target of one step |
 //! | [`linear`] | sparse Cholesky, KKT `LDL^T`, CG and MINRES, orderings and shifts |
 //! | `simulation` | the stepping driver ([`Simulation`]: quasi-static and implicit Euler) and its reports |
+//!
+//! A problem is stated with [`Problem::builder`] (or as a [`Problem`] literal), run by
+//! [`Simulation::run`], and measured with the probes of `isochor_mesh::probes`; the sparse
+//! matrices of a Newton step come as `sprs::CsMat` from [`Simulation::matrices`] (faer is the
+//! solvers' own type and stays inside, except in the [`linear`] layer).
+//!
+//! Re-exports: the mesh types a [`Problem`] holds and a [`State`] is read on
+//! ([`ElementMesh`], [`TetMesh`], [`Vec3`], [`Zones`]), [`NodalCompliance`] of a [`Material`],
+//! and the [`sprs`] crate of [`Matrices`], so that stating a problem and reading its results
+//! needs this crate alone. Mesh generators, readers and probes stay in `isochor-mesh`.
 
 #![deny(missing_docs)]
 
