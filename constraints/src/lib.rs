@@ -19,6 +19,8 @@
 //! multipliers are tension-positive pressures (`p = kappa (J - 1)` at equilibrium
 //! `phi = C p` for the linear measure).
 
+#![deny(missing_docs)]
+
 mod constraint_set;
 mod element;
 mod error;

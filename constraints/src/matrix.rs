@@ -2,13 +2,14 @@
 //! the fixed patterns and fill values instead).
 
 use crate::{ConstraintError, ConstraintSet};
-use faer::sparse::{SparseColMat, Triplet};
 use isochor_mesh::Vec3;
+use sprs::{CsMat, TriMat};
 
-/// A sparse matrix in faer's compressed-column form, the type the solvers use.
-pub type SparseMatrix = SparseColMat<usize, f64>;
+/// A sparse matrix handed to users: `sprs`' compressed form (the interchange type of the
+/// workspace; the solvers factorize with faer inside).
+pub type SparseMatrix = CsMat<f64>;
 
-/// The constraint Jacobian `G` (`m x 3n`) at positions `x`, duplicates summed.
+/// The constraint Jacobian `G` (`m x 3n`, CSR) at positions `x`, duplicates summed.
 ///
 /// Errors: those of [`ConstraintSet::jacobian_values`].
 pub fn jacobian_matrix(
@@ -18,10 +19,14 @@ pub fn jacobian_matrix(
     let pattern = set.jacobian_pattern();
     let mut values = vec![0.0; pattern.len()];
     set.jacobian_values(x, &mut values)?;
-    assemble((set.num_constraints(), 3 * x.len()), &pattern, &values)
+    Ok(assemble(
+        (set.num_constraints(), 3 * x.len()),
+        &pattern,
+        &values,
+    ))
 }
 
-/// The geometric stiffness `K_g = sum_i p_i Hess(phi_i)` (`3n x 3n`, eq. 23) at
+/// The geometric stiffness `K_g = sum_i p_i Hess(phi_i)` (`3n x 3n`, CSR, eq. 23) at
 /// positions `x` and multipliers `p`, duplicates summed.
 ///
 /// Errors: those of [`ConstraintSet::geometric_stiffness_values`].
@@ -33,23 +38,15 @@ pub fn geometric_stiffness_matrix(
     let pattern = set.geometric_stiffness_pattern();
     let mut values = vec![0.0; pattern.len()];
     set.geometric_stiffness_values(x, multipliers, &mut values)?;
-    assemble((3 * x.len(), 3 * x.len()), &pattern, &values)
+    Ok(assemble((3 * x.len(), 3 * x.len()), &pattern, &values))
 }
 
-/// The matrix of `shape` from an entry pattern and its values, duplicates summed.
-fn assemble(
-    shape: (usize, usize),
-    pattern: &[(usize, usize)],
-    values: &[f64],
-) -> Result<SparseMatrix, ConstraintError> {
-    let triplets: Vec<Triplet<usize, usize, f64>> = pattern
-        .iter()
-        .zip(values)
-        .map(|(&(row, col), &value)| Triplet::new(row, col, value))
-        .collect();
-    SparseColMat::try_new_from_triplets(shape.0, shape.1, &triplets).map_err(|e| {
-        ConstraintError::InvalidMesh {
-            reason: format!("the constraint pattern does not fit a {shape:?} matrix: {e:?}"),
-        }
-    })
+/// The CSR matrix of `shape` from an entry pattern and its values, duplicates summed. The
+/// `*_values` call that produced `values` has checked `x`, so every index is in range.
+fn assemble(shape: (usize, usize), pattern: &[(usize, usize)], values: &[f64]) -> SparseMatrix {
+    let mut triplets = TriMat::with_capacity(shape, pattern.len());
+    for (&(row, col), &value) in pattern.iter().zip(values) {
+        triplets.add_triplet(row, col, value);
+    }
+    triplets.to_csr()
 }

@@ -52,6 +52,25 @@ impl NodalConstraints {
     /// incompressible material: `C = 0` exactly) and compliance integration.
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
+    ///
+    /// ```
+    /// use isochor_constraints::{
+    ///     jacobian_matrix, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+    /// };
+    /// use isochor_mesh::generate::box_grid;
+    /// use isochor_mesh::Vec3;
+    ///
+    /// let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [1, 1, 1])?;
+    /// let set = NodalConstraints::new(&mesh, Measure::Linear, f64::INFINITY, NodalCompliance::Lumped)?;
+    /// assert_eq!(set.num_constraints(), 8); // one per vertex
+    /// // Doubling every length multiplies each nodal volume by 8: phi = 7 V_i.
+    /// let x: Vec<Vec3> = mesh.positions().iter().map(|p| 2.0 * p).collect();
+    /// let mut phi = vec![0.0; 8];
+    /// set.values(&x, &mut phi)?;
+    /// assert!((phi.iter().sum::<f64>() - 7.0).abs() < 1e-12);
+    /// assert_eq!(jacobian_matrix(&set, &x)?.shape(), (8, 24));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(
         mesh: &TetMesh,
         measure: Measure,

@@ -33,6 +33,8 @@
 //!   Hessians and the chain rule of a density `W(Ib1, Ib2)`
 //!   ([`kinematics::IsochoricInvariants`]).
 
+#![deny(missing_docs)]
+
 mod composed;
 pub mod element;
 mod epidermis;

@@ -7,6 +7,18 @@ use nalgebra::Matrix3;
 ///
 /// Implementations return [`OutOfDomain`] instead of NaN when `F` is outside their domain
 /// (`det F <= 0` for energies with `log J`).
+///
+/// ```
+/// use isochor_energies::{standard_neo_hookean, Hyperelastic, Lame};
+/// use nalgebra::Matrix3;
+///
+/// let material = standard_neo_hookean(Lame::from_young_poisson(1e5, 0.45)?)?;
+/// // At rest the stress vanishes; under a 1 % uniaxial stretch it pulls along x.
+/// assert!(material.pk1(&Matrix3::identity())?.norm() < 1e-9);
+/// let p = material.pk1(&Matrix3::from_diagonal(&[1.01, 1.0, 1.0].into()))?;
+/// assert!(p[(0, 0)] > 0.0 && p[(0, 1)] == 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub trait Hyperelastic: Send + Sync + std::fmt::Debug {
     /// Short name for reports and errors.
     fn name(&self) -> &'static str;

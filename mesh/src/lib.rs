@@ -4,7 +4,9 @@
 //! its rest data, the boundary surface, adjacency and k-rings, named selections, volume
 //! zones (Sheen et al. 2021, sec. 4 and 6), the element layer of 4- and 10-node tets
 //! ([`element`]: reference elements, quadrature, isoparametric rest geometry, [`ElementMesh`]),
-//! mesh generators, and file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
+//! mesh generators, [`probes`] of a deformed state, and file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
+
+#![deny(missing_docs)]
 
 mod adjacency;
 mod closest;
@@ -12,6 +14,7 @@ pub mod element;
 mod error;
 pub mod generate;
 pub mod io;
+pub mod probes;
 mod selection;
 mod surface;
 mod tet_mesh;

@@ -108,7 +108,9 @@ impl fmt::Debug for Region {
 /// A named, sorted, duplicate-free set of vertex indices.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct VertexSelection {
+    /// The selection's name.
     pub name: String,
+    /// Its vertex indices, sorted, without duplicates.
     pub vertices: Vec<usize>,
 }
 
@@ -165,7 +167,9 @@ impl VertexSelection {
 /// A named set of boundary triangles, outward oriented, in volume vertex indices.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FaceSelection {
+    /// The selection's name.
     pub name: String,
+    /// Its boundary triangles, outward oriented.
     pub faces: Vec<[usize; 3]>,
 }
 

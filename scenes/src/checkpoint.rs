@@ -49,14 +49,23 @@ pub struct RunCheckpoint {
 /// [`Checkpoint`] in serializable form.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SolverCheckpoint {
+    /// Positions.
     pub positions: Vec<[f64; 3]>,
+    /// Velocities.
     pub velocities: Vec<[f64; 3]>,
+    /// Pressures or multipliers.
     pub multipliers: Vec<f64>,
+    /// Load parameter or time of the state.
     pub t: f64,
+    /// The stepping's load parameter or time reached.
     pub progress_t: f64,
+    /// Accepted steps so far.
     pub steps: usize,
+    /// Levels reached so far.
     pub levels: usize,
+    /// The next increment to try.
     pub increment: f64,
+    /// The contact multipliers (empty without obstacles).
     pub contact_multipliers: Vec<f64>,
 }
 

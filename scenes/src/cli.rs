@@ -31,6 +31,7 @@ pub const EXIT_NOT_CONVERGED: i32 = 3;
 #[derive(Debug, Parser)]
 #[command(name = "isochor", version, about, long_about = None)]
 pub struct Cli {
+    /// The command to run.
     #[command(subcommand)]
     pub command: Command,
 }

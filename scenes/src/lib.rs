@@ -11,6 +11,8 @@
 //! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
 //! [`RunResult`].
 
+#![deny(missing_docs)]
+
 pub mod builtin;
 pub mod check;
 pub mod checkpoint;

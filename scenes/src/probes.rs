@@ -5,7 +5,7 @@ use crate::result::StepRecord;
 use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
 use crate::selection::Selections;
 use crate::SceneError;
-use isochor_mesh::element::deformation_gradient;
+use isochor_mesh::probes::{displacement_at, volume_change, volume_ratio};
 use isochor_mesh::{ElementMesh, TetMesh, Vec3, TET_FACES};
 use isochor_solvers::Energies;
 use std::collections::{BTreeMap, HashMap};
@@ -92,8 +92,7 @@ fn probe(
                 ComponentName::Norm => u.norm(),
             };
             if let Some(p) = point {
-                let u = displacement_at(mesh, x, &Vec3::new(p[0], p[1], p[2]))
-                    .map_err(ProbeError::Message)?;
+                let u = displacement_at(mesh, x, &Vec3::new(p[0], p[1], p[2])).map_err(message)?;
                 scale * pick(u)
             } else {
                 let name = selection.as_deref().unwrap_or_default();
@@ -105,15 +104,13 @@ fn probe(
                 reduce_values(&values, *reduce)
             }
         }
-        ProbeSpec::VolumeChange => mesh.total_volume_at(x) / mesh.rest_volume() - 1.0,
+        ProbeSpec::VolumeChange => volume_change(mesh, x).map_err(message)?,
         ProbeSpec::VolumeRatio { selection } => {
             let elements: Vec<usize> = match selection {
                 Some(name) => selections.tets(name)?,
                 None => (0..mesh.num_elements()).collect(),
             };
-            let (deformed, rest) = (mesh.volumes_at(x), rest_volumes());
-            let sum = |v: &[f64]| elements.iter().map(|&e| v[e]).sum::<f64>();
-            sum(&deformed) / sum(&rest)
+            volume_ratio(mesh, x, &elements).map_err(message)?
         }
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),
@@ -189,6 +186,11 @@ fn probe(
     })
 }
 
+/// A mesh layer's refusal as a probe's message.
+fn message(e: isochor_mesh::MeshError) -> ProbeError {
+    ProbeError::Message(e.to_string())
+}
+
 fn pressures<'a>(input: &ProbeInput<'a>) -> Result<&'a [f64], ProbeError> {
     if input.tet_pressures.len() == input.mesh.num_elements() {
         Ok(input.tet_pressures)
@@ -215,65 +217,6 @@ fn volume_ratios(mesh: &ElementMesh, x: &[Vec3]) -> impl Iterator<Item = f64> {
         .into_iter()
         .zip(rest)
         .map(|(v, v0)| v / v0)
-}
-
-/// Barycentric coordinates of `p` in rest tet `e`.
-fn barycentric(mesh: &TetMesh, e: usize, p: &Vec3) -> [f64; 4] {
-    let t = mesh.tets()[e];
-    let l = mesh.inverse_rest_shapes()[e] * (p - mesh.positions()[t[0]]);
-    [1.0 - l.x - l.y - l.z, l.x, l.y, l.z]
-}
-
-/// The displacement at rest point `p`, interpolated with the shape functions of the rest
-/// element containing it (or, for a point slightly outside the mesh, the nearest element in
-/// barycentric terms). The element is found by its corners; on a curved 10-node element the
-/// reference point then comes from Newton's method on the isoparametric map `X(xi) = p`.
-pub fn displacement_at(mesh: &ElementMesh, x: &[Vec3], p: &Vec3) -> Result<Vec3, String> {
-    let corners = mesh.corners();
-    let mut best: Option<(usize, f64)> = None;
-    for e in 0..corners.num_tets() {
-        let min = barycentric(corners, e, p)
-            .into_iter()
-            .fold(f64::INFINITY, f64::min);
-        if best.is_none_or(|(_, b)| min > b) {
-            best = Some((e, min));
-            if min >= 0.0 {
-                break;
-            }
-        }
-    }
-    let (e, min) = best.ok_or("the mesh has no tets")?;
-    if min < -0.25 {
-        return Err(format!(
-            "point ({}, {}, {}) lies outside the mesh",
-            p.x, p.y, p.z
-        ));
-    }
-    let [_, l1, l2, l3] = barycentric(corners, e, p);
-    let kind = mesh.kind();
-    let (nodes, rest) = (mesh.element(e), mesh.nodes());
-    let n = kind.num_nodes();
-    let (mut values, mut gradients) = (vec![0.0; n], vec![Vec3::zeros(); n]);
-    let mut xi = Vec3::new(l1, l2, l3);
-    for _ in 0..20 {
-        kind.shape_values(&xi, &mut values);
-        kind.shape_gradients(&xi, &mut gradients);
-        let mapped: Vec3 = nodes.iter().zip(&values).map(|(&a, v)| *v * rest[a]).sum();
-        let jacobian = deformation_gradient(rest, nodes, &gradients);
-        let Some(step) = jacobian.try_inverse().map(|inverse| inverse * (p - mapped)) else {
-            break;
-        };
-        xi += step;
-        if step.norm() < 1e-14 {
-            break;
-        }
-    }
-    kind.shape_values(&xi, &mut values);
-    Ok(nodes
-        .iter()
-        .zip(&values)
-        .map(|(&a, v)| *v * (x[a] - rest[a]))
-        .sum())
 }
 
 /// Mean absolute jump of a per-tet field across interior faces, divided by the field's
@@ -310,43 +253,6 @@ pub fn checkerboard(mesh: &TetMesh, field: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use isochor_mesh::generate::box_grid;
-
-    #[test]
-    fn point_displacement_interpolates_linear_fields_exactly() {
-        let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [8, 2, 2]).unwrap();
-        let mesh = ElementMesh::linear(mesh);
-        let u = |p: &Vec3| Vec3::new(0.1 * p.y, -0.3 * p.x + 0.2 * p.z, 0.05);
-        let x: Vec<Vec3> = mesh.nodes().iter().map(|p| p + u(p)).collect();
-        for p in [
-            Vec3::new(0.2, 0.025, 0.025),
-            Vec3::new(0.013, 0.011, 0.049),
-            Vec3::zeros(),
-        ] {
-            let got = displacement_at(&mesh, &x, &p).unwrap();
-            assert!((got - u(&p)).norm() < 1e-12, "{got} vs {}", u(&p));
-        }
-        assert!(displacement_at(&mesh, &x, &Vec3::new(1.0, 1.0, 1.0)).is_err());
-    }
-
-    /// On curved 10-node tets (a cylinder's wall on the true surface) the probe reproduces a
-    /// quadratic displacement field exactly, at points inside curved boundary elements too.
-    #[test]
-    fn point_displacement_interpolates_quadratic_fields_on_curved_tets() {
-        use isochor_mesh::generate::{cylinder, cylinder_surface};
-        let mesh = cylinder(0.1, 0.2, 2).unwrap();
-        let mesh = ElementMesh::quadratic_on_surface(mesh, cylinder_surface(0.1)).unwrap();
-        let u = |p: &Vec3| Vec3::new(p.x * p.y, p.z * p.z - p.x, 0.3 * p.y * p.z + 0.01);
-        let x: Vec<Vec3> = mesh.nodes().iter().map(|p| p + u(p)).collect();
-        for p in [
-            Vec3::new(0.0, 0.0, 0.1),
-            Vec3::new(0.099, 0.0, 0.05),
-            Vec3::new(0.07, 0.07, 0.2),
-            Vec3::new(-0.03, 0.05, 0.13),
-        ] {
-            let got = displacement_at(&mesh, &x, &p).unwrap();
-            assert!((got - u(&p)).norm() < 1e-13, "at {p}: {got} vs {}", u(&p));
-        }
-    }
 
     #[test]
     fn checkerboard_separates_smooth_from_alternating_fields() {

@@ -123,7 +123,9 @@ pub type Vector = [f64; 3];
 pub enum MeshSpec {
     /// A box `[min, max]` with `res * cells` hexes per axis, Kuhn-split into 6 tets each.
     Box {
+        /// Lower corner.
         min: Vector,
+        /// Upper corner.
         max: Vector,
         /// Resolution multiplier.
         res: usize,
@@ -136,38 +138,56 @@ pub enum MeshSpec {
     },
     /// A solid cylinder about the z axis from `z = 0` to `height`.
     Cylinder {
+        /// Radius.
         radius: f64,
+        /// Height.
         height: f64,
+        /// Resolution: cells across the radius.
         res: usize,
     },
     /// A puck (short cylinder with at least `res` layers).
     Puck {
+        /// Radius.
         radius: f64,
+        /// Height.
         height: f64,
+        /// Resolution: cells across the radius (and at least this many layers).
         res: usize,
     },
     /// A thick-walled tube about the z axis from `z = 0` to `height`.
     Tube {
+        /// Inner radius.
         inner_radius: f64,
+        /// Outer radius.
         outer_radius: f64,
+        /// Height.
         height: f64,
+        /// Resolution: cells across the wall.
         res: usize,
     },
     /// A ball centred at `center`.
     Ball {
+        /// Radius.
         radius: f64,
+        /// Resolution: cells across the radius.
         res: usize,
+        /// Centre (default the origin).
         #[serde(default)]
         center: Vector,
     },
     /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
     Explicit {
+        /// Vertex positions.
         positions: Vec<Vector>,
+        /// Tets, as four vertex indices each.
         tets: Vec<[usize; 4]>,
     },
     /// A mesh file: Gmsh `.msh`, TetGen `.node`/`.ele` (either name), or `.vtu`. A relative
     /// path is resolved against the scene file's folder (or the working directory).
-    File { path: PathBuf },
+    File {
+        /// The file.
+        path: PathBuf,
+    },
 }
 
 /// The message without the "in `key`" line the TOML deserializer appends (the key is
@@ -250,7 +270,9 @@ pub struct RegionSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum KappaName {
+    /// The bulk modulus (the default).
     Bulk,
+    /// The first Lame parameter.
     Lambda,
 }
 
@@ -258,7 +280,9 @@ pub enum KappaName {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ZonalEnergyName {
+    /// F-bar deviatoric neo-Hookean plus `lambda U(J; beta)` (the default).
     Constrained,
+    /// The standard coupled neo-Hookean.
     Standard,
 }
 
@@ -299,7 +323,9 @@ pub struct SelectionSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoxSpec {
+    /// Lower corner.
     pub min: Vector,
+    /// Upper corner.
     pub max: Vector,
 }
 
@@ -307,7 +333,9 @@ pub struct BoxSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneSpec {
+    /// A point of the plane.
     pub point: Vector,
+    /// Its normal.
     pub normal: Vector,
 }
 
@@ -315,12 +343,16 @@ pub struct PlaneSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RadialSpec {
+    /// A point of the axis (default the origin).
     #[serde(default)]
     pub center: Vector,
+    /// Direction of the axis (default `+z`).
     #[serde(default = "z_axis")]
     pub axis: Vector,
+    /// Smallest distance (default 0).
     #[serde(default)]
     pub min: f64,
+    /// Largest distance (default infinite).
     #[serde(default = "infinity")]
     pub max: f64,
 }
@@ -329,7 +361,9 @@ pub struct RadialSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SphereSpec {
+    /// Centre.
     pub center: Vector,
+    /// Radius.
     pub radius: f64,
 }
 
@@ -378,12 +412,20 @@ pub enum MotionSpec {
     Translate(Vector),
     /// Rotated by `degrees` about `axis` through `center`.
     Rotate {
+        /// A point of the axis.
         center: Vector,
+        /// Direction of the axis.
         axis: Vector,
+        /// Angle at the end of the run, in degrees.
         degrees: f64,
     },
     /// Scaled about `center` by `factors`.
-    Scale { center: Vector, factors: Vector },
+    Scale {
+        /// The fixed point.
+        center: Vector,
+        /// Scale factors along x, y, z at the end of the run.
+        factors: Vector,
+    },
 }
 
 /// External loads.
@@ -412,31 +454,44 @@ pub enum ObstacleSpec {
     /// The solid below the plane through `point` (default origin) with outward `normal`
     /// (default `+z`).
     HalfSpace {
+        /// A point of the boundary plane (default the origin).
         #[serde(default)]
         point: Vector,
+        /// Outward normal (default `+z`).
         #[serde(default = "z_axis")]
         normal: Vector,
+        /// Displacement at the end of the run (default none).
         #[serde(default)]
         translate: Vector,
+        /// The motion over the run (default: the fraction of the run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         curve: Option<CurveSpec>,
     },
     /// A solid sphere.
     Sphere {
+        /// Centre.
         center: Vector,
+        /// Radius.
         radius: f64,
+        /// Displacement at the end of the run (default none).
         #[serde(default)]
         translate: Vector,
+        /// The motion over the run (default: the fraction of the run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         curve: Option<CurveSpec>,
     },
     /// An infinite solid cylinder about the line through `point` along `axis`.
     Cylinder {
+        /// A point of the axis.
         point: Vector,
+        /// Direction of the axis.
         axis: Vector,
+        /// Radius.
         radius: f64,
+        /// Displacement at the end of the run (default none).
         #[serde(default)]
         translate: Vector,
+        /// The motion over the run (default: the fraction of the run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         curve: Option<CurveSpec>,
     },
@@ -446,7 +501,9 @@ pub enum ObstacleSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSpec {
+    /// The selection whose boundary faces are loaded.
     pub selection: String,
+    /// Force per unit rest area (Pa).
     pub traction: Vector,
     /// Scale over the run (default: the load ramp).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -457,7 +514,9 @@ pub struct TractionSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct PressureSpec {
+    /// The selection whose boundary faces are loaded.
     pub selection: String,
+    /// Pressure (Pa).
     pub pressure: f64,
     /// Scale over the run (default: the load ramp).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -481,8 +540,11 @@ pub struct ZonesSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ZoneKind {
+    /// One zone holding every tet.
     Global,
+    /// Overlapping k-ring zones covering the mesh.
     KRing,
+    /// Zones painted on the surface (labels of the scene).
     Painted,
 }
 
@@ -496,29 +558,43 @@ pub enum SteppingSpec {
     /// after a failed solve down to `min_increment` (default 1e-3) and doubles it after easy
     /// steps; `"fixed"` takes one solve per frame and stops at the first failure.
     QuasiStatic {
+        /// Number of frames.
         steps: usize,
         /// `"adaptive"` (default) or `"fixed"` (a string checked when the scene is loaded, so
         /// that a bad value names its key).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         increments: Option<String>,
+        /// The first increment (default 1).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         first_increment: Option<f64>,
+        /// The smallest increment (default 1e-3).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         min_increment: Option<f64>,
     },
     /// Implicit Euler with time step `dt` (s) for `frames` frames.
-    Dynamic { dt: f64, frames: usize },
+    Dynamic {
+        /// Time step (s).
+        dt: f64,
+        /// Number of steps (each a frame).
+        frames: usize,
+    },
 }
 
 /// Newton limits and tolerances (defaults: the solver's).
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
+    /// Newton iterations per step.
     pub max_iterations: Option<usize>,
+    /// Force tolerance, relative to the force scale.
     pub force_tolerance: Option<f64>,
+    /// Constraint tolerance, relative to the rest volumes.
     pub constraint_tolerance: Option<f64>,
+    /// Line-search backtracks per iteration.
     pub max_backtracks: Option<usize>,
+    /// Dual ascent iterations per step.
     pub max_dual_iterations: Option<usize>,
+    /// Whether element Hessians are projected to PSD.
     pub project_hessians: Option<bool>,
     /// `direct` or `iterative`.
     pub linear: Option<LinearName>,
@@ -537,7 +613,9 @@ pub struct SolverSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LinearName {
+    /// Sparse direct factorization.
     Direct,
+    /// CG or MINRES.
     Iterative,
 }
 
@@ -548,10 +626,13 @@ pub enum ProbeSpec {
     /// `scale * u_component` at a point (barycentric in the containing rest tet), or reduced
     /// over the vertices of a selection.
     Displacement {
+        /// The rest point (instead of a selection).
         point: Option<Vector>,
+        /// The selection reduced over (instead of a point).
         selection: Option<String>,
         /// `x`, `y`, `z` or `norm`.
         component: ComponentName,
+        /// Factor applied to the value (default 1).
         #[serde(default = "unit")]
         scale: f64,
         /// Over a selection: `mean` (default), `max` or `min`.
@@ -561,7 +642,10 @@ pub enum ProbeSpec {
     /// Whole-body deformed/rest volume minus one.
     VolumeChange,
     /// Deformed/rest volume of the tets whose centroid lies in a selection (all tets if none).
-    VolumeRatio { selection: Option<String> },
+    VolumeRatio {
+        /// The selection (all tets if none).
+        selection: Option<String>,
+    },
     /// Smallest deformed/rest volume ratio of a tet.
     MinVolumeRatio,
     /// Largest deformed/rest volume ratio of a tet.
@@ -578,17 +662,26 @@ pub enum ProbeSpec {
     PressureCheckerboard,
     /// Mean increase of the distance from an axis of the vertices of a selection.
     RadiusIncrease {
+        /// The selection whose vertices are measured.
         selection: String,
+        /// A point of the axis (default the origin).
         #[serde(default)]
         center: Vector,
+        /// Direction of the axis (default `+z`).
         #[serde(default = "z_axis")]
         axis: Vector,
     },
     /// An energy of the final frame: `kinetic`, `elastic`, `external` or `total`.
-    Energy { which: EnergyName },
+    Energy {
+        /// Which energy.
+        which: EnergyName,
+    },
     /// Whole-body deformed/rest volume over the run's accepted steps, reduced by `reduce`
     /// (`min`, `max` or `mean`; e.g. the volume extremes of Figs. 10-11 of Sheen et al.).
-    RunVolumeRatio { reduce: Reduce },
+    RunVolumeRatio {
+        /// How the steps are reduced.
+        reduce: Reduce,
+    },
     /// Largest penetration of a vertex into an obstacle over the run.
     MaxPenetration,
     /// The first step or frame with a vertex in contact (NaN if none).
@@ -605,9 +698,13 @@ fn unit() -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ComponentName {
+    /// The x component.
     X,
+    /// The y component.
     Y,
+    /// The z component.
     Z,
+    /// The length.
     Norm,
 }
 
@@ -615,9 +712,12 @@ pub enum ComponentName {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Reduce {
+    /// The mean (the default).
     #[default]
     Mean,
+    /// The largest value.
     Max,
+    /// The smallest value.
     Min,
 }
 
@@ -625,9 +725,13 @@ pub enum Reduce {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EnergyName {
+    /// Kinetic energy.
     Kinetic,
+    /// Stored elastic energy.
     Elastic,
+    /// Potential of the external loads.
     External,
+    /// Their sum.
     Total,
 }
 

@@ -8,52 +8,94 @@ use isochor_mesh::MeshError;
 /// Why a model could not be built or a solve failed.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum SolverError {
+    /// Unknown method '`name`' (valid: `valid`).
     #[error("unknown method '{name}' (valid: {valid})")]
-    UnknownMethod { name: String, valid: String },
+    UnknownMethod {
+        /// The name given.
+        name: String,
+        /// The valid names, comma-separated.
+        valid: String,
+    },
+    /// A material parameter is invalid.
     #[error(transparent)]
     Parameter(#[from] ParameterError),
+    /// The mesh layer refused the mesh (its message).
     #[error("{0}")]
     Mesh(String),
+    /// The problem or a setting is invalid (the message names the index or key).
     #[error("invalid problem: {0}")]
     InvalidProblem(String),
+    /// Method `method` cannot run at nu = `nu`: `reason`.
     #[error("method {method} cannot run at nu = {nu}: {reason}")]
     Unsupported {
+        /// The method's name.
         method: &'static str,
+        /// Poisson's ratio of the material.
         nu: f64,
+        /// Why.
         reason: &'static str,
     },
+    /// The initial state has inverted or degenerate elements where the energy is undefined.
     #[error("the initial state is outside the domain of the energy: {0}")]
     InvalidInitialState(String),
+    /// A nonlinear iteration ran out of iterations before the tolerances were met.
     #[error("{solver} did not converge in {iterations} iterations (force residual {force_residual:e}, constraint residual {constraint_residual:e})")]
     NotConverged {
         /// The iteration that ran out: "Newton", "saddle-point Newton" or "dual ascent".
         solver: &'static str,
+        /// Iterations done.
         iterations: usize,
+        /// The force residual reached.
         force_residual: f64,
+        /// The constraint residual reached.
         constraint_residual: f64,
     },
+    /// The prescribed motion was not reached: full steps leave the energy's domain.
     #[error("the prescribed motion was not reached in {iterations} iterations: the boundary is still {gap:e} away because full steps leave the energy's domain (inverted or flattened tets); use more steps or an invertible energy (zonal)")]
-    BoundaryUnreachable { iterations: usize, gap: f64 },
+    BoundaryUnreachable {
+        /// Iterations done.
+        iterations: usize,
+        /// Distance still to go to the prescribed motion.
+        gap: f64,
+    },
+    /// Line search failed after `backtracks` backtracks: `reason`.
     #[error("line search failed after {backtracks} backtracks: {reason}")]
-    LineSearch { backtracks: usize, reason: String },
+    LineSearch {
+        /// Backtracks done.
+        backtracks: usize,
+        /// Why.
+        reason: String,
+    },
+    /// Contact did not converge in `iterations` multiplier updates (penetration `max_penetration` m).
     #[error("contact did not converge in {iterations} multiplier updates (penetration {max_penetration:e} m)")]
     ContactNotConverged {
+        /// Iterations done.
         iterations: usize,
+        /// The deepest penetration, in metres.
         max_penetration: f64,
     },
+    /// Stepping cut the increment below its smallest allowed value without convergence.
     #[error("no convergence from load parameter or time {t} even with an increment of {increment:e} (the smallest allowed is {min:e}); the last attempt: {error}")]
     IncrementTooSmall {
+        /// Load parameter or time of the step.
         t: f64,
+        /// The last increment tried.
         increment: f64,
+        /// The smallest increment allowed.
         min: f64,
+        /// The last attempt's error.
         error: Box<SolverError>,
     },
+    /// The linear solver failed (its message).
     #[error("linear solver failed: {0}")]
     Linear(String),
+    /// A non-finite value appeared in the named quantity.
     #[error("non-finite value in {0}")]
     NonFinite(&'static str),
+    /// The constraint set could not be built or evaluated.
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
+    /// A state left the domain of the energy.
     #[error(transparent)]
     Energy(#[from] OutOfDomain),
 }

@@ -10,7 +10,9 @@ pub enum LinearSolver {
     /// Preconditioned iterative solve (CG for SPD, MINRES for saddle points) with a relative
     /// tolerance and an iteration limit, for meshes too large to factor (sec. 8 of Francu et al.).
     Iterative {
+        /// Relative residual at which the iteration stops.
         tolerance: f64,
+        /// Iterations allowed per linear solve.
         max_iterations: usize,
     },
 }

@@ -24,12 +24,9 @@ pub fn unflatten(q: &DVector<f64>) -> Vec<Vec3> {
 
 /// A dense matrix of `shape` from sparse `(value, (row, col))` entries, duplicates summed.
 fn dense(a: &SparseMatrix) -> DMatrix<f64> {
-    let a = a.as_ref();
-    let mut d = DMatrix::zeros(a.nrows(), a.ncols());
-    for c in 0..a.ncols() {
-        for (r, v) in a.row_idx_of_col(c).zip(a.val_of_col(c)) {
-            d[(r, c)] += v;
-        }
+    let mut d = DMatrix::zeros(a.rows(), a.cols());
+    for (v, (r, c)) in a {
+        d[(r, c)] += v;
     }
     d
 }

@@ -6,6 +6,8 @@
 //! results they compare against ([`pinned`], files in `reference/`), plus the
 //! locking regressions and studies.
 
+#![deny(missing_docs)]
+
 pub mod constraint_checks;
 pub mod fd;
 pub mod pinned;

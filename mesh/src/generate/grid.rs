@@ -8,6 +8,20 @@ use crate::{MeshError, TetMesh, Vec3};
 /// `6 nx ny nz` tets.
 ///
 /// Vertex `(i, j, k)` has index `i + (nx + 1) * (j + (ny + 1) * k)`.
+///
+/// ```
+/// use isochor_mesh::generate::box_grid;
+/// use isochor_mesh::{ElementMesh, Vec3};
+///
+/// let mesh = box_grid(Vec3::zeros(), Vec3::new(0.1, 0.02, 0.02), [5, 1, 1])?;
+/// assert_eq!((mesh.num_vertices(), mesh.num_tets()), (24, 30));
+/// assert!((mesh.rest_volume() - 4e-5).abs() < 1e-15);
+/// // The same box of 10-node tets (mid-edge nodes added).
+/// let quadratic = ElementMesh::quadratic(mesh);
+/// assert_eq!(quadratic.num_vertices(), 24);
+/// assert_eq!(quadratic.element(0).len(), 10);
+/// # Ok::<(), isochor_mesh::MeshError>(())
+/// ```
 pub fn box_grid(min: Vec3, max: Vec3, cells: [usize; 3]) -> Result<TetMesh, MeshError> {
     let names = ["nx", "ny", "nz"];
     for (axis, &n) in cells.iter().enumerate() {

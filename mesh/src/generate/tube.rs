@@ -12,6 +12,7 @@ const MAX_CELLS: usize = 4096;
 /// inflation pressure of Francu et al. 2021, Fig. 1 acts), the outer wall, and the end rings.
 #[derive(Debug, Clone)]
 pub struct TubeMesh {
+    /// The tube's tets.
     pub mesh: TetMesh,
     /// The wall at `inner_radius`, named "inner".
     pub inner: FaceSelection,

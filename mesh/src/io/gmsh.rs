@@ -52,6 +52,25 @@ pub fn read_gmsh_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshErr
 /// Reads a Gmsh mesh like [`read_gmsh_elements`] with its physical groups of dimension 2
 /// (surfaces) and 3 (volumes), their vertices numbered as the mesh's. Fails at its line on a
 /// triangle with a node that is no tet's corner.
+///
+/// ```
+/// use isochor_mesh::io::read_gmsh_with_groups;
+///
+/// // One tet with its base triangle in the surface group "base" (Gmsh format 2.2).
+/// let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
+///            $PhysicalNames\n2\n2 1 \"base\"\n3 2 \"body\"\n$EndPhysicalNames\n\
+///            $Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n\
+///            $Elements\n2\n1 2 2 1 1 1 3 2\n2 4 2 2 1 1 2 3 4\n$EndElements\n";
+/// let path = std::env::temp_dir().join(format!("isochor-doc-{}.msh", std::process::id()));
+/// std::fs::write(&path, msh).unwrap();
+/// let (mesh, groups) = read_gmsh_with_groups(&path)?;
+/// std::fs::remove_file(&path).unwrap();
+/// assert_eq!(mesh.num_elements(), 1);
+/// assert_eq!(groups.keys().collect::<Vec<_>>(), ["base", "body"]);
+/// assert_eq!(groups.get("base").unwrap().faces, [[0, 2, 1]]);
+/// assert_eq!(groups.get("body").unwrap().tets, [0]);
+/// # Ok::<(), isochor_mesh::MeshError>(())
+/// ```
 pub fn read_gmsh_with_groups(
     path: impl AsRef<Path>,
 ) -> Result<(ElementMesh, PhysicalGroups), MeshError> {

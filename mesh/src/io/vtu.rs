@@ -49,7 +49,9 @@ pub enum FieldValues {
 /// A named data array.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Field {
+    /// The array's name (`Name` attribute).
     pub name: String,
+    /// Its values.
     pub values: FieldValues,
 }
 
@@ -105,12 +107,15 @@ impl Field {
 /// The contents of a VTU file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VtuFile {
+    /// The point coordinates.
     pub points: Vec<Vec3>,
     /// The kind of every cell.
     pub element: TetElement,
     /// `element.num_nodes()` point indices per cell, in our node order.
     pub cells: Vec<usize>,
+    /// The arrays with one value (or tuple) per point.
     pub point_data: Vec<Field>,
+    /// The arrays with one value (or tuple) per cell.
     pub cell_data: Vec<Field>,
 }
 

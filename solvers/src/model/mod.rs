@@ -15,13 +15,16 @@ use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
 
+mod builder;
 mod densities;
 mod dofs;
 mod problem;
 mod regions;
 mod schedule;
 mod supports;
+mod validate;
 
+pub use builder::ProblemBuilder;
 use densities::elastic_density;
 pub use dofs::Dofs;
 pub use problem::{

@@ -228,6 +228,17 @@ impl Material {
     /// Parameters from Young's modulus and Poisson's ratio, with the papers' defaults
     /// elsewhere: `kappa` = bulk modulus, zonal `lambda` equivalent to `nu = 0.45`,
     /// `beta = 1`, `epsilon = 0.1`, dual base `nu = 0.4`, no epidermis.
+    ///
+    /// ```
+    /// use isochor_solvers::Material;
+    ///
+    /// // A silicone rubber in SI units: E = 100 kPa, incompressible, 1070 kg/m^3.
+    /// let silicone = Material::from_young_poisson(1e5, 0.5, 1070.0)?;
+    /// assert!((silicone.mu - 1e5 / 3.0).abs() < 1e-9);
+    /// assert_eq!(silicone.mixed_kappa()?, f64::INFINITY); // C = 0 in the mixed methods
+    /// assert!(Material::from_young_poisson(1e5, 0.6, 1070.0).is_err());
+    /// # Ok::<(), isochor_energies::ParameterError>(())
+    /// ```
     pub fn from_young_poisson(young: f64, nu: f64, density: f64) -> Result<Self, ParameterError> {
         let mu = Lame::shear_modulus(young, nu)?;
         let zonal_lambda = Lame::from_young_poisson(young, 0.45)?.lambda;
@@ -395,12 +406,20 @@ pub enum Motion {
     Translate(Vec3),
     /// Rotated by `t * angle` (radians) about `axis` through `center` (twisting).
     Rotate {
+        /// A point on the axis.
         center: Vec3,
+        /// The axis' direction (any length but zero).
         axis: Vec3,
+        /// The angle at `t = 1`, in radians.
         angle: f64,
     },
     /// Scaled about `center` by `1 + t (factors - 1)` per axis (stretching).
-    Scale { center: Vec3, factors: Vec3 },
+    Scale {
+        /// The fixed point of the scaling.
+        center: Vec3,
+        /// The scale factors along x, y and z at `t = 1`.
+        factors: Vec3,
+    },
 }
 
 impl Motion {
@@ -450,14 +469,19 @@ pub enum Load {
     /// Dead traction (force per unit rest area) on boundary faces, given by their corner
     /// triangles (on a 10-node mesh, the 6-node faces over them are loaded).
     Traction {
+        /// The loaded boundary faces, by their corner vertices.
         faces: Vec<[usize; 3]>,
+        /// Force per unit rest area.
         traction: Vec3,
     },
     /// Follower pressure on boundary faces, oriented with the body's outward normal: a
     /// positive pressure pushes the faces into the body, so listing the faces that line a
     /// chamber inflates it.
     Pressure {
+        /// The loaded boundary faces, by their corner vertices; they must close a surface or
+        /// have their rim held by Dirichlet conditions.
         faces: Vec<[usize; 3]>,
+        /// Pressure, force per unit deformed area.
         pressure: f64,
     },
 }
@@ -509,14 +533,27 @@ pub struct Problem {
 pub enum Shape {
     /// The half-space below the plane through `point` with (outward) `normal`:
     /// `d = n . (x - p)`.
-    HalfSpace { point: Vec3, normal: Vec3 },
+    HalfSpace {
+        /// A point of the boundary plane.
+        point: Vec3,
+        /// The outward normal (any length but zero).
+        normal: Vec3,
+    },
     /// A solid sphere: `d = |x - c| - R`.
-    Sphere { center: Vec3, radius: f64 },
+    Sphere {
+        /// The centre.
+        center: Vec3,
+        /// The radius.
+        radius: f64,
+    },
     /// An infinite solid cylinder around the line through `point` along `axis`:
     /// `d = dist(x, axis) - R`.
     Cylinder {
+        /// A point of the axis.
         point: Vec3,
+        /// The axis' direction (any length but zero).
         axis: Vec3,
+        /// The radius.
         radius: f64,
     },
 }

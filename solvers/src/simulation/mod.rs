@@ -7,12 +7,14 @@ use crate::nonlinear::newton::{self, Newton};
 use crate::nonlinear::saddle::SaddleNewton;
 use crate::nonlinear::target::{norm, StepTarget};
 
+mod matrices;
 mod report;
 mod stepper;
 
 use crate::terms::Inertia;
 use crate::{LoadLevel, Method, Problem, Regions, Settings, SolverError};
 use faer::sparse::SparseColMat;
+pub use matrices::Matrices;
 pub use report::{IterationReport, StepReport, Timings};
 use stepper::Stepper;
 pub use stepper::{Adaptive, Progress, StepControl};
@@ -27,12 +29,22 @@ use std::time::{Duration, Instant};
 pub enum Stepping {
     /// Loads and prescribed motions follow the load parameter from 0 to 1; the levels
     /// `k / steps` are the frames, and `control` chooses the increments between them.
-    QuasiStatic { steps: usize, control: StepControl },
+    QuasiStatic {
+        /// Number of frames: the levels `k / steps`, `k = 1..=steps`.
+        steps: usize,
+        /// How the increments between frames are chosen.
+        control: StepControl,
+    },
     /// Implicit Euler (eq. 20-21) with time step `dt` for `frames` steps; prescribed motions
     /// follow `time / (dt * frames)`, loads are constant (unless they follow curves). A failed
     /// step is retried in substeps (`dt/2`, `dt/4`, ... down to `dt/1024`) that end on the
     /// frame's time.
-    ImplicitEuler { dt: f64, frames: usize },
+    ImplicitEuler {
+        /// Time step, in seconds.
+        dt: f64,
+        /// Number of steps (each a frame).
+        frames: usize,
+    },
 }
 
 impl Stepping {
@@ -217,14 +229,14 @@ pub struct NewtonSystem {
 
 impl NewtonSystem {
     /// Densifies `K` (lower triangle) and, for a KKT system, `G` and `C`.
-    fn new(
-        model: &Model,
-        residual: Vec<f64>,
-        rhs: Vec<f64>,
-        gap: Vec<f64>,
-        k: &Sparse,
-        kkt: Option<(&Sparse, Option<&Sparse>)>,
-    ) -> Self {
+    fn new(model: &Model, linear: Linear) -> Self {
+        let Linear {
+            residual,
+            rhs,
+            gap,
+            k,
+            kkt,
+        } = linear;
         let n = k.ncols();
         let mut matrix = DMatrix::zeros(residual.len(), residual.len());
         let entries = |a: &Sparse| {
@@ -237,18 +249,18 @@ impl NewtonSystem {
                 })
                 .collect::<Vec<_>>()
         };
-        for (r, c, v) in entries(k) {
+        for (r, c, v) in entries(&k) {
             matrix[(r, c)] += v;
             if r != c {
                 matrix[(c, r)] += v;
             }
         }
-        if let Some((g, compliance)) = kkt {
+        if let Some((g, compliance)) = &kkt {
             for (r, c, v) in entries(g) {
                 matrix[(n + r, c)] += v;
                 matrix[(c, n + r)] += v;
             }
-            for (r, c, v) in compliance.map(entries).unwrap_or_default() {
+            for (r, c, v) in compliance.as_ref().map(entries).unwrap_or_default() {
                 matrix[(n + r, n + c)] -= v;
             }
         }
@@ -260,6 +272,17 @@ impl NewtonSystem {
             matrix,
         }
     }
+}
+
+/// One Newton linearization as the solvers assemble it: the residual, right-hand side and
+/// prescribed increments of [`NewtonSystem`], `K` over the free DOFs (lower triangle) and,
+/// for a saddle-point method, `G` and the compliance `C` (`None` when `C = 0`).
+struct Linear {
+    residual: Vec<f64>,
+    rhs: Vec<f64>,
+    gap: Vec<f64>,
+    k: Sparse,
+    kkt: Option<(Sparse, Option<Sparse>)>,
 }
 
 /// The linear systems of one step (see [`Simulation::linearizer`]).
@@ -277,6 +300,12 @@ impl Linearizer<'_> {
     /// geometric stiffness (eq. 23). `standard` and `condensed` have `K` alone, and `dual`
     /// the Hessian of its primal problem (eq. 39) at the multipliers of `trial`.
     pub fn newton_system(&mut self, trial: &State) -> Result<NewtonSystem, SolverError> {
+        let linear = self.linearize(trial)?;
+        Ok(NewtonSystem::new(self.system.model, linear))
+    }
+
+    /// The linearization behind [`Self::newton_system`] and [`Self::matrices`].
+    fn linearize(&mut self, trial: &State) -> Result<Linear, SolverError> {
         let model = self.system.model;
         if trial.positions.len() != model.mesh.num_nodes()
             || trial.multipliers.len() != self.multipliers
@@ -294,9 +323,13 @@ impl Linearizer<'_> {
                     augmented.set_multipliers(&trial.multipliers);
                 }
                 let l = newton::linearize(&mut self.system, x, &self.target)?;
-                Ok(NewtonSystem::new(
-                    model, l.residual, l.rhs, l.d_fixed, &l.k, None,
-                ))
+                Ok(Linear {
+                    residual: l.residual,
+                    rhs: l.rhs,
+                    gap: l.d_fixed,
+                    k: l.k,
+                    kkt: None,
+                })
             }
             Some(saddle) => {
                 let l = saddle.linearize(&mut self.system, x, &trial.multipliers, &self.target)?;
@@ -304,15 +337,13 @@ impl Linearizer<'_> {
                 residual.extend(l.theta);
                 let mut rhs = l.rhs_x;
                 rhs.extend(l.rhs_p);
-                let kkt = (&l.g, saddle.compliance());
-                Ok(NewtonSystem::new(
-                    model,
+                Ok(Linear {
                     residual,
                     rhs,
-                    l.d_fixed,
-                    &l.k,
-                    Some(kkt),
-                ))
+                    gap: l.d_fixed,
+                    k: l.k,
+                    kkt: Some((l.g, saddle.compliance().cloned())),
+                })
             }
         }
     }
@@ -329,6 +360,7 @@ impl Simulation {
     /// Builds the model of `problem` (only the terms it names) at its rest state.
     pub fn new(problem: Problem, settings: Settings) -> Result<Self, SolverError> {
         check_settings(&settings)?;
+        problem.validate()?;
         let model = Model::new(problem, settings.project_hessians)?;
         if model.scheme == NonlinearScheme::Dual && settings.linear != crate::LinearSolver::Direct {
             return Err(SolverError::InvalidProblem(
@@ -602,6 +634,15 @@ impl Simulation {
                 Some(dt),
             ),
         };
+        self.linearizer_at(level, dt)
+    }
+
+    /// The linearizer of a step to `level` with time step `dt` (`None`: quasi-static).
+    fn linearizer_at(
+        &mut self,
+        level: LoadLevel,
+        dt: Option<f64>,
+    ) -> Result<Linearizer<'_>, SolverError> {
         let force_tolerance = self.settings.force_tolerance * self.force_scale()?;
         self.model.set_contact_stiffness(dt);
         let inertia = dt.map(|dt| {
@@ -633,6 +674,26 @@ impl Simulation {
     /// increment (adaptive quasi-static stepping, dynamics) from the last accepted state,
     /// contact multipliers included; when no retry is left the run ends, the state left at
     /// the last accepted step, which the error carries too.
+    ///
+    /// ```
+    /// use isochor_mesh::generate::box_grid;
+    /// use isochor_solvers::{Problem, Settings, Simulation, Stepping, Vec3};
+    ///
+    /// // A 1 cm silicone cube on its base, squashed by its own weight in two load steps.
+    /// let mesh = box_grid(Vec3::zeros(), Vec3::repeat(0.01), [1, 1, 1])?;
+    /// let base: Vec<usize> = (0..4).collect(); // the vertices at z = 0
+    /// let problem = Problem::builder(mesh)
+    ///     .clamp(base)
+    ///     .gravity(Vec3::new(0.0, 0.0, -9.81))
+    ///     .build()?;
+    /// let mut simulation = Simulation::new(problem, Settings::default())?;
+    /// let mut frames = 0;
+    /// let summary = simulation.run(Stepping::quasi_static(2), |_frame| frames += 1)?;
+    /// assert_eq!(frames, 2);
+    /// let top = summary.final_state.positions[7]; // the corner (1, 1, 1) cm
+    /// assert!(top.z < 0.01);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn run(
         &mut self,
         stepping: Stepping,
