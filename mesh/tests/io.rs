@@ -201,7 +201,7 @@ fn awkward_fields(points: &[Vec3], cells: usize, nan: f64) -> (Vec<Field>, Vec<F
         Field::tensor(
             "stress",
             (0..cells)
-                .map(|e| nalgebra::Matrix3::from_fn(|i, j| value(e) * (3 * i + j) as f64 - 1.0))
+                .map(|e| nalgebra::Matrix3::from_fn(|i, j| value(e) + 0.25 * (3 * i + j) as f64))
                 .collect(),
         ),
     ];

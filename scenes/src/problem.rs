@@ -3,8 +3,8 @@
 
 use crate::checks;
 use crate::scene::{
-    CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, MotionSpec, ObstacleSpec, Scene,
-    SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
+    CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, ModelName, MotionSpec, ObstacleSpec,
+    Scene, SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
 };
 use crate::selection::Selections;
 use crate::SceneError;
@@ -12,8 +12,9 @@ use isochor_energies::ParameterError;
 use isochor_mesh::element::TetElement;
 use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3, Zones};
 use isochor_solvers::{
-    Adaptive, Curve, Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, Method, Motion,
-    Obstacle, Problem, Region, ScheduledLoad, Settings, Shape, StepControl, Stepping, ZonalEnergy,
+    Adaptive, Curve, Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, MaterialModel,
+    Method, Motion, Obstacle, Problem, Region, ScheduledLoad, Settings, Shape, StepControl,
+    Stepping, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -318,9 +319,22 @@ pub fn read_mesh_file(path: &Path) -> Result<ElementMesh, SceneError> {
 
 /// Material parameters from a scene's `[material]` table.
 pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
-    let young = match (spec.young, spec.mu) {
-        (Some(e), _) => e,
-        (None, Some(mu)) => {
+    let invalid = |message: String| SceneError::Invalid {
+        origin: "scene".into(),
+        key: "material".into(),
+        message,
+    };
+    let model = material_model(spec).map_err(invalid)?;
+    let young = match (spec.young, spec.mu, model.shear_modulus()) {
+        (None, None, Some(mu)) => 2.0 * mu * (1.0 + spec.nu),
+        (Some(_), _, Some(_)) | (_, Some(_), Some(_)) => {
+            return Err(invalid(format!(
+                "model {} takes its stiffness from its constants: drop young and mu",
+                model.name()
+            )))
+        }
+        (Some(e), _, None) => e,
+        (None, Some(mu), None) => {
             // Checked as given, not as the Young's modulus it implies, so the error names mu.
             if !(mu.is_finite() && mu > 0.0) {
                 return Err(ParameterError {
@@ -332,15 +346,9 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
             }
             2.0 * mu * (1.0 + spec.nu)
         }
-        (None, None) => {
-            return Err(SceneError::Invalid {
-                origin: "scene".into(),
-                key: "material".into(),
-                message: "give young (E) or mu".into(),
-            })
-        }
+        (None, None, None) => return Err(invalid("give young (E) or mu".into())),
     };
-    let mut m = Material::from_young_poisson(young, spec.nu, spec.rho)?;
+    let mut m = Material::from_young_poisson(young, spec.nu, spec.rho)?.with_model(model)?;
     if let Some(mu) = spec.mu {
         m.mu = mu;
     }
@@ -379,6 +387,64 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
     Ok(m)
 }
 
+/// The model of a `[material]` table, its constants checked against the model.
+fn material_model(spec: &MaterialSpec) -> Result<MaterialModel, String> {
+    let name = spec.model.unwrap_or(ModelName::NeoHookean);
+    let given: Vec<&str> = [
+        ("c10", spec.c10.is_some()),
+        ("c01", spec.c01.is_some()),
+        ("c20", spec.c20.is_some()),
+        ("c30", spec.c30.is_some()),
+        ("ogden", spec.ogden.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(key, set)| set.then_some(key))
+    .collect();
+    let allowed: &[&str] = match name {
+        ModelName::MooneyRivlin => &["c10", "c01"],
+        ModelName::Yeoh => &["c10", "c20", "c30"],
+        ModelName::Ogden => &["ogden"],
+        _ => &[],
+    };
+    if let Some(key) = given.iter().find(|k| !allowed.contains(k)) {
+        return Err(format!(
+            "{key} is not a constant of model {} (its constants: {})",
+            name.name(),
+            if allowed.is_empty() {
+                "none; give young or mu".to_string()
+            } else {
+                allowed.join(", ")
+            }
+        ));
+    }
+    let required = |key: &str, value: Option<f64>| {
+        value.ok_or_else(|| format!("model {} needs {key}", name.name()))
+    };
+    Ok(match name {
+        ModelName::NeoHookean => MaterialModel::NeoHookean,
+        ModelName::StableNeoHookean => MaterialModel::StableNeoHookean,
+        ModelName::BonetWood => MaterialModel::BonetWood,
+        ModelName::MooneyRivlin => MaterialModel::MooneyRivlin {
+            c10: required("c10", spec.c10)?,
+            c01: spec.c01.unwrap_or(0.0),
+        },
+        ModelName::Yeoh => MaterialModel::Yeoh {
+            c10: required("c10", spec.c10)?,
+            c20: spec.c20.unwrap_or(0.0),
+            c30: spec.c30.unwrap_or(0.0),
+        },
+        ModelName::Ogden => MaterialModel::Ogden {
+            terms: spec
+                .ogden
+                .as_ref()
+                .ok_or_else(|| "model ogden needs ogden = [[mu_p, alpha_p], ...]".to_string())?
+                .iter()
+                .map(|&[mu, alpha]| (mu, alpha))
+                .collect(),
+        },
+    })
+}
+
 /// The material of region `index`: the body's `[material]` keys overlaid with the region's.
 fn region_material(
     body: &MaterialSpec,
@@ -393,9 +459,11 @@ fn region_material(
     };
     let mut merged =
         toml::Table::try_from(body).map_err(|e| invalid(origin.clone(), e.to_string()))?;
-    for (given, replaced) in [("young", "mu"), ("mu", "young")] {
-        if overrides.contains_key(given) {
-            merged.remove(replaced);
+    // A region that gives any stiffness key replaces all of the body's.
+    const STIFFNESS: [&str; 7] = ["young", "mu", "c10", "c01", "c20", "c30", "ogden"];
+    if STIFFNESS.iter().any(|k| overrides.contains_key(*k)) {
+        for key in STIFFNESS {
+            merged.remove(key);
         }
     }
     merged.extend(overrides.clone());

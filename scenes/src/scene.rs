@@ -212,10 +212,29 @@ fn one() -> usize {
     1
 }
 
-/// Material parameters. Give exactly one of `young` and `mu`.
+/// Material parameters. Give exactly one of `young` and `mu`, or, for the models with
+/// constants (`mooney-rivlin`, `yeoh`, `ogden`), the constants and neither.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
+    /// The hyperelastic model (default `neo-hookean`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<ModelName>,
+    /// Mooney-Rivlin and Yeoh: coefficient of `Ib1 - 3` (Pa).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub c10: Option<f64>,
+    /// Mooney-Rivlin: coefficient of `Ib2 - 3` (Pa, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub c01: Option<f64>,
+    /// Yeoh: coefficient of `(Ib1 - 3)^2` (Pa, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub c20: Option<f64>,
+    /// Yeoh: coefficient of `(Ib1 - 3)^3` (Pa, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub c30: Option<f64>,
+    /// Ogden: the terms `[[mu_p, alpha_p], ...]` (`mu_p` in Pa).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ogden: Option<Vec<[f64; 2]>>,
     /// Young's modulus `E` (Pa).
     pub young: Option<f64>,
     /// Shear modulus `mu` (Pa), instead of `young`.
@@ -264,6 +283,38 @@ pub struct RegionSpec {
     /// The keys of `[material]` that differ in this region (`young` replaces the body's `mu`
     /// and the other way round); every other key is the body's.
     pub material: toml::Table,
+}
+
+/// `model` choice (see `isochor_solvers::MaterialModel`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelName {
+    /// Neo-Hookean in each method's form.
+    NeoHookean,
+    /// Uncoupled Mooney-Rivlin (`c10`, `c01`).
+    MooneyRivlin,
+    /// Yeoh (`c10`, `c20`, `c30`).
+    Yeoh,
+    /// Uncoupled Ogden (`ogden` terms).
+    Ogden,
+    /// Stable neo-Hookean (`young` or `mu`).
+    StableNeoHookean,
+    /// Isochoric neo-Hookean of Bonet and Wood (`young` or `mu`).
+    BonetWood,
+}
+
+impl ModelName {
+    /// The name as scenes write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelName::NeoHookean => "neo-hookean",
+            ModelName::MooneyRivlin => "mooney-rivlin",
+            ModelName::Yeoh => "yeoh",
+            ModelName::Ogden => "ogden",
+            ModelName::StableNeoHookean => "stable-neo-hookean",
+            ModelName::BonetWood => "bonet-wood",
+        }
+    }
 }
 
 /// `kappa` choice.
@@ -929,12 +980,11 @@ impl Scene {
                 ))
             }
         };
-        match (self.material.young, self.material.mu) {
-            (Some(_), Some(_)) => {
-                return Err(bad("material", "give either young or mu, not both".into()))
-            }
-            (None, None) => return Err(bad("material", "give young (E) or mu".into())),
-            _ => {}
+        if let (Some(_), Some(_)) = (self.material.young, self.material.mu) {
+            return Err(bad("material", "give either young or mu, not both".into()));
+        }
+        for (i, r) in self.regions.iter().enumerate() {
+            check_selection(format!("regions.{i}.selection"), &r.selection)?;
         }
         for (name, s) in &self.selections {
             let key = format!("selections.{name}");
