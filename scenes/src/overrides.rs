@@ -155,7 +155,7 @@ pub fn check_conflicts(overrides: &[Override]) -> Result<(), SceneError> {
         let target = target(o);
         if let Some((_, earlier)) = targets.iter().find(|(t, _)| conflict(t, &target)) {
             let what = if stiffness(&target) {
-                "the stiffness: young (E) and mu are alternatives".to_string()
+                "the stiffness: young (E), mu and a model's constants are alternatives".to_string()
             } else {
                 target.clone()
             };
@@ -185,19 +185,34 @@ fn target(o: &Override) -> String {
     }
 }
 
-fn stiffness(key: &str) -> bool {
-    key == "material.young" || key == "material.mu"
+/// The alternative ways of giving a material's stiffness: Young's modulus, the shear
+/// modulus, or the constants of a model (which go together).
+const STIFFNESS_GROUPS: [&[&str]; 3] =
+    [&["young"], &["mu"], &["c10", "c01", "c20", "c30", "ogden"]];
+
+/// The stiffness group of a dotted key, if it is one of the material's stiffness keys.
+fn stiffness_group(key: &str) -> Option<usize> {
+    let key = key.strip_prefix("material.")?;
+    STIFFNESS_GROUPS.iter().position(|g| g.contains(&key))
 }
 
-/// Whether two dotted keys set the same thing: equal, one inside the other, or the
-/// alternatives `young` and `mu`.
+fn stiffness(key: &str) -> bool {
+    stiffness_group(key).is_some()
+}
+
+/// Whether two dotted keys set the same thing: equal, one inside the other, or alternative
+/// stiffness keys (`young`, `mu`, a model's constants).
 fn conflict(a: &str, b: &str) -> bool {
     let inside = |outer: &str, inner: &str| {
         inner
             .strip_prefix(outer)
             .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'))
     };
-    inside(a, b) || inside(b, a) || (stiffness(a) && stiffness(b))
+    let alternatives = matches!(
+        (stiffness_group(a), stiffness_group(b)),
+        (Some(x), Some(y)) if x != y
+    );
+    inside(a, b) || inside(b, a) || alternatives
 }
 
 /// Applies one override.
@@ -233,15 +248,17 @@ pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
         }
     }
     let path = resolve(tree, &o.key).map_err(err)?;
-    // Young's modulus and the shear modulus are alternatives: setting one drops the other.
-    let drop = match path.as_str() {
-        "material.young" => Some("mu"),
-        "material.mu" => Some("young"),
-        _ => None,
-    };
-    if let Some(other) = drop {
+    // Young's modulus, the shear modulus and a model's constants are alternatives: setting
+    // one drops the others.
+    if let Some(group) = stiffness_group(&path) {
         if let Some(Value::Table(m)) = root(tree)?.get_mut("material") {
-            m.remove(other);
+            for (g, keys) in STIFFNESS_GROUPS.iter().enumerate() {
+                if g != group {
+                    keys.iter().for_each(|k| {
+                        m.remove(*k);
+                    });
+                }
+            }
         }
     }
     set_path(tree, &path, o.value.clone()).map_err(err)

@@ -325,6 +325,15 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
         message,
     };
     let model = material_model(spec).map_err(invalid)?;
+    model.validate().map_err(|e| match model {
+        // The terms are one key; the error names the term's parameter.
+        MaterialModel::Ogden { .. } => SceneError::Invalid {
+            origin: "scene".into(),
+            key: "material.ogden".into(),
+            message: e.to_string(),
+        },
+        _ => e.into(),
+    })?;
     let young = match (spec.young, spec.mu, model.shear_modulus()) {
         (None, None, Some(mu)) => 2.0 * mu * (1.0 + spec.nu),
         (Some(_), _, Some(_)) | (_, Some(_), Some(_)) => {

@@ -7,7 +7,9 @@
 
 use crate::scene::{MeshSpec, SelectionSpec};
 use crate::SceneError;
-use isochor_mesh::io::{read_gmsh_with_groups, PhysicalGroup, PhysicalGroups};
+use isochor_mesh::io::{
+    read_gmsh_with_groups, read_tetgen_with_regions, PhysicalGroup, PhysicalGroups,
+};
 use isochor_mesh::{
     BoundarySurface, ElementMesh, FaceSelection, Region, TetMesh, Vec3, VertexSelection,
 };
@@ -50,13 +52,14 @@ impl<'a> Selections<'a> {
         let wanted = specs.values().any(|s| s.physical.is_some());
         let (groups, source) = match source {
             MeshSpec::File { path } => {
-                let gmsh = path
+                let extension = path
                     .extension()
-                    .is_some_and(|e| e.eq_ignore_ascii_case("msh"));
-                let groups = if wanted && gmsh {
-                    Some(read_gmsh_with_groups(path)?.1)
-                } else {
-                    None
+                    .map(|e| e.to_string_lossy().to_ascii_lowercase());
+                let groups = match extension.as_deref() {
+                    _ if !wanted => None,
+                    Some("msh") => Some(read_gmsh_with_groups(path)?.1),
+                    Some("node" | "ele") => Some(read_tetgen_with_regions(path)?.1),
+                    _ => None,
                 };
                 (groups, format!("the mesh file {}", path.display()))
             }
@@ -107,7 +110,7 @@ impl<'a> Selections<'a> {
         };
         let Some(groups) = &self.groups else {
             return Err(error(format!(
-                "physical = \"{key}\" needs a Gmsh .msh mesh file, but the scene's mesh is {}",
+                "physical = \"{key}\" needs a Gmsh .msh or TetGen .node/.ele mesh file, but the scene's mesh is {}",
                 self.source
             )));
         };

@@ -9,7 +9,8 @@ use isochor_scenes::problem::{build, Built};
 use isochor_scenes::scene::{PreviewField, VtuEncodingName};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
-    Epidermis, Kappa, LinearSolver, Load, Method, Simulation, StepControl, Stepping, ZonalEnergy,
+    Epidermis, Kappa, LinearSolver, Load, MaterialModel, Method, Simulation, StepControl, Stepping,
+    ZonalEnergy,
 };
 
 /// One flat key: the scene and overrides it needs first, a value that differs from the
@@ -94,6 +95,56 @@ const CASES: &[Case] = &[
         value: "7e4",
         reached: |_, b| b.problem.material.mu == 7e4,
         bad: "-5.0",
+    },
+    Case {
+        key: "model",
+        scene: STATIC,
+        setup: &[],
+        value: "stable-neo-hookean",
+        reached: |_, b| b.problem.material.model == MaterialModel::StableNeoHookean,
+        bad: "rubber",
+    },
+    Case {
+        key: "c10",
+        scene: STATIC,
+        setup: &["model=mooney-rivlin", "c10=2e4"],
+        value: "4e4",
+        reached: |_, b| b.problem.material.mu == 8e4,
+        bad: "-1e5",
+    },
+    Case {
+        key: "c01",
+        scene: STATIC,
+        setup: &["model=mooney-rivlin", "c10=4e4"],
+        value: "1e4",
+        reached: |_, b| {
+            b.problem.material.model == MaterialModel::MooneyRivlin { c10: 4e4, c01: 1e4 }
+        },
+        bad: "\"stiff\"",
+    },
+    Case {
+        key: "c20",
+        scene: STATIC,
+        setup: &["model=yeoh", "c10=4e4"],
+        value: "-1e3",
+        reached: |_, b| matches!(b.problem.material.model, MaterialModel::Yeoh { c20, .. } if c20 == -1e3),
+        bad: "\"x\"",
+    },
+    Case {
+        key: "c30",
+        scene: STATIC,
+        setup: &["model=yeoh", "c10=4e4"],
+        value: "1e2",
+        reached: |_, b| matches!(b.problem.material.model, MaterialModel::Yeoh { c30, .. } if c30 == 1e2),
+        bad: "\"x\"",
+    },
+    Case {
+        key: "ogden",
+        scene: STATIC,
+        setup: &["model=ogden", "ogden=[[2e4, 2.0]]"],
+        value: "[[8e4, 1.3], [-1e3, -2.0]]",
+        reached: |_, b| b.problem.material.mu == 0.5 * (8e4 * 1.3 + 2e3),
+        bad: "[[1e4, 0.0]]",
     },
     Case {
         key: "rho",

@@ -156,32 +156,26 @@ fn check_reports_the_region_volumes_of_the_mesh() {
     assert_eq!(regions.len(), 3659);
 }
 
-/// Errors name the region: an unknown material key, a bad value, an empty selection.
+/// Errors name the region: an unknown material key, a bad value, an element in two regions,
+/// a selection that does not exist.
 #[test]
 fn bad_regions_are_named_errors() {
     let dir = scratch("errors");
-    let unknown = bilayer(
-        &dir,
+    let error = |file: &str, regions: &str| {
+        bilayer(&dir, file, SOFT, regions)
+            .and_then(|s| check_scene(&s, None).map(|_| ()))
+            .unwrap_err()
+            .to_string()
+    };
+    let unknown = error(
         "unknown.toml",
-        SOFT,
         &STIFF_LAYER.replace("young = 10e6", "yung = 10e6"),
-    )
-    .and_then(|s| check_scene(&s, None).map(|_| ()))
-    .unwrap_err()
-    .to_string();
+    );
     assert!(
         unknown.contains("regions.0.material") && unknown.contains("yung"),
         "{unknown}"
     );
-    let bad = bilayer(
-        &dir,
-        "bad.toml",
-        SOFT,
-        &STIFF_LAYER.replace("young = 10e6", "nu = 0.7"),
-    )
-    .and_then(|s| check_scene(&s, None).map(|_| ()))
-    .unwrap_err()
-    .to_string();
+    let bad = error("bad.toml", &STIFF_LAYER.replace("young = 10e6", "nu = 0.7"));
     assert!(
         bad.contains("regions.0.material") && bad.contains("nu"),
         "{bad}"
@@ -190,12 +184,101 @@ fn bad_regions_are_named_errors() {
         "{STIFF_LAYER}\n\n{}",
         STIFF_LAYER.replace("\"stiff layer\"", "\"again\"")
     );
-    let twice = bilayer(&dir, "twice.toml", SOFT, &overlap)
-        .and_then(|s| check_scene(&s, None).map(|_| ()))
-        .unwrap_err()
-        .to_string();
+    let twice = error("twice.toml", &overlap);
     assert!(
         twice.contains("region 'again'") && twice.contains("stiff layer"),
         "{twice}"
+    );
+    let missing = error(
+        "missing.toml",
+        &STIFF_LAYER.replace("selection = \"layer\"", "selection = \"lair\""),
+    );
+    assert!(
+        missing.contains("regions.0.selection") && missing.contains("lair"),
+        "{missing}"
+    );
+}
+
+/// TetGen region attributes (the first tet attribute of the `.ele` file, TetGen's `-A`) are
+/// volume groups named by their number: a region selects `physical = "2"`, and a region
+/// attribute that is not an integer is an error naming the line.
+#[test]
+fn tetgen_region_attributes_select_regions() {
+    let dir = scratch("tetgen");
+    let grid = isochor_mesh::generate::box_grid(
+        isochor_mesh::Vec3::zeros(),
+        isochor_mesh::Vec3::new(2.0, 1.0, 1.0),
+        [4, 2, 2],
+    )
+    .unwrap();
+    let mut node = format!("{} 3 0 0\n", grid.num_vertices());
+    for (i, p) in grid.positions().iter().enumerate() {
+        node += &format!("{} {:?} {:?} {:?}\n", i + 1, p.x, p.y, p.z);
+    }
+    let mut ele = format!("{} 4 1\n", grid.num_tets());
+    let mut upper = 0;
+    for (e, t) in grid.tets().iter().enumerate() {
+        let region = if grid.centroid(e).x > 1.0 { 2 } else { 1 };
+        upper += (region == 2) as usize;
+        ele += &format!(
+            "{} {} {} {} {} {region}\n",
+            e + 1,
+            t[0] + 1,
+            t[1] + 1,
+            t[2] + 1,
+            t[3] + 1
+        );
+    }
+    std::fs::write(dir.join("bar.node"), &node).unwrap();
+    std::fs::write(dir.join("bar.ele"), &ele).unwrap();
+    let text = format!(
+        r#"name = "tetgen-regions"
+method = "mixed-p1"
+
+[mesh]
+generator = "file"
+path = {:?}
+
+[material]
+young = 1e5
+nu = 0.45
+
+[selections.far]
+physical = "2"
+
+[selections.end]
+plane = {{ point = [0.0, 0.0, 0.0], normal = [1.0, 0.0, 0.0] }}
+
+[[regions]]
+name = "far half"
+selection = "far"
+material = {{ young = 1e6 }}
+
+[[dirichlet]]
+selection = "end"
+
+[stepping]
+mode = "quasi-static"
+steps = 1
+"#,
+        dir.join("bar.ele")
+    );
+    let path = dir.join("bar.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = load_scene(path.to_str().unwrap(), None, &[]).unwrap();
+    let report = check_scene(&scene, None).unwrap();
+    let far = report
+        .regions
+        .iter()
+        .find(|r| r.name == "far half")
+        .unwrap();
+    assert_eq!(far.tets, upper);
+    assert!((far.volume - 1.0).abs() < 1e-12, "{}", far.volume);
+
+    std::fs::write(dir.join("bar.ele"), ele.replacen(" 1\n", " 1.5\n", 2)).unwrap();
+    let error = check_scene(&scene, None).unwrap_err().to_string();
+    assert!(
+        error.contains("bar.ele") && error.contains("1.5"),
+        "{error}"
     );
 }

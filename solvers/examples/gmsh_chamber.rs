@@ -1,8 +1,10 @@
 //! A Gmsh mesh with physical groups: a silicone tube of 10-node tets whose end faces
 //! (surface groups `bottom` and `top`) are held while a follower pressure acts on its inner
-//! wall (surface group `inner`), the chamber of a pneumatic actuator. Mixed FEM with nodal
-//! pressures. Prints the groups read, the mean radial displacement of the inner wall and
-//! the volume change of the (incompressible) wall.
+//! wall (surface group `inner`), the chamber of a pneumatic actuator. Two materials: the
+//! outer half of the wall (radius above 25 mm) is a sleeve ten times stiffer than the soft
+//! inner half, a region given in code. Mixed FEM with nodal pressures. Prints the groups
+//! read, the mean radial displacement of the inner wall and the volume change of the
+//! (incompressible) wall.
 //!
 //! Run with `cargo run --example gmsh_chamber -p isochor-solvers`. The mesh is the
 //! repository's `mesh/tests/data/tube-tet10-v41.msh`; any Gmsh file with these three surface
@@ -29,8 +31,16 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut ends = mesh.face_elements(&faces("bottom")?)?;
     ends.extend(mesh.face_elements(&faces("top")?)?);
     let inner = faces("inner")?;
+    let sleeve: Vec<usize> = (0..mesh.num_elements())
+        .filter(|&e| mesh.corners().centroid(e).xy().norm() > 0.025)
+        .collect();
     let problem = Problem::builder(mesh)
         .material(Material::from_young_poisson(1e5, 0.5, 1070.0)?)
+        .region(
+            "sleeve",
+            sleeve,
+            Material::from_young_poisson(1e6, 0.5, 1070.0)?,
+        )
         .clamp(ends)
         .pressure(inner.iter().copied(), 5e3)
         .build()?;

@@ -147,7 +147,7 @@ pub struct PhysicalGroups {
 }
 
 impl PhysicalGroups {
-    fn new(groups: Vec<PhysicalGroup>) -> Self {
+    pub(crate) fn new(groups: Vec<PhysicalGroup>) -> Self {
         let key = |g: &PhysicalGroup| g.name.clone().unwrap_or_else(|| g.tag.to_string());
         let mut uses = HashMap::new();
         for g in &groups {

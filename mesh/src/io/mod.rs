@@ -24,7 +24,7 @@ pub use gmsh::{
     read_gmsh, read_gmsh_elements, read_gmsh_with_groups, PhysicalGroup, PhysicalGroups,
 };
 pub use pvd::write_pvd;
-pub use tetgen::read_tetgen;
+pub use tetgen::{read_tetgen, read_tetgen_with_regions};
 pub use text::excerpt;
 pub use vtu::{
     read_vtu, read_vtu_elements, read_vtu_file, write_vtu, write_vtu_elements, Field, FieldValues,

@@ -1,6 +1,8 @@
 //! TetGen `.node` / `.ele` reader: 0- or 1-based indices (TetGen's `-z` switch), attributes
-//! and boundary markers tolerated, `#` comments skipped.
+//! and boundary markers tolerated, `#` comments skipped; the region attribute of the tets
+//! (TetGen's `-A` switch, the first tet attribute) read as volume groups.
 
+use super::gmsh::{PhysicalGroup, PhysicalGroups};
 use super::text::{excerpt, Lines};
 use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
@@ -12,12 +14,39 @@ use std::path::Path;
 /// the `.ele` file uses the same base, as TetGen writes them. Vertices that no tet uses are
 /// dropped.
 pub fn read_tetgen(path: impl AsRef<Path>) -> Result<TetMesh, MeshError> {
+    Ok(read_tetgen_with_regions(path)?.0)
+}
+
+/// [`read_tetgen`], with the region attribute of every tet (the first attribute of the `.ele`
+/// file, which TetGen's `-A` switch writes) as volume groups named by their number, so that
+/// a scene selects `physical = "2"` as on a Gmsh mesh. No groups when the `.ele` file has no
+/// attributes.
+///
+/// Errors: those of [`read_tetgen`]; a region attribute that is not an integer.
+pub fn read_tetgen_with_regions(
+    path: impl AsRef<Path>,
+) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     let path = path.as_ref();
     let node_path = path.with_extension("node");
     let ele_path = path.with_extension("ele");
     let (positions, base) = parse_node(&node_path, &read_text(&node_path)?)?;
-    let cells = parse_ele(&ele_path, &read_text(&ele_path)?, base, positions.len())?;
-    Ok(assemble(&ele_path, numbered(positions, base), cells)?.into_corners())
+    let (cells, regions) = parse_ele(&ele_path, &read_text(&ele_path)?, base, positions.len())?;
+    let mesh = assemble(&ele_path, numbered(positions, base), cells)?.into_corners();
+    let mut groups: std::collections::BTreeMap<i64, Vec<usize>> = Default::default();
+    for (tet, region) in regions.into_iter().enumerate() {
+        groups.entry(region).or_default().push(tet);
+    }
+    let groups = groups
+        .into_iter()
+        .map(|(tag, tets)| PhysicalGroup {
+            dimension: 3,
+            tag,
+            name: None,
+            faces: Vec::new(),
+            tets,
+        })
+        .collect();
+    Ok((mesh, PhysicalGroups::new(groups)))
 }
 
 /// The nodes with their indices in the file (from `base`).
@@ -79,8 +108,14 @@ fn parse_node(path: &Path, text: &str) -> Result<(Vec<Vec3>, usize), MeshError> 
     Ok((positions, base))
 }
 
-/// `n nodes-per-tet attributes`, then `index v0 v1 v2 v3 [attributes]` per tet.
-fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cells, MeshError> {
+/// `n nodes-per-tet attributes`, then `index v0 v1 v2 v3 [attributes]` per tet; with the
+/// first attribute of every tet (its region) if there are attributes.
+fn parse_ele(
+    path: &Path,
+    text: &str,
+    base: usize,
+    points: usize,
+) -> Result<(Cells, Vec<i64>), MeshError> {
     let mut lines = Lines::new(path, text, Some('#'));
     let mut h = lines.fields("the header `<#tetrahedra> <nodes per tetrahedron> <#attributes>`")?;
     let count = h.usize("the number of tetrahedra")?;
@@ -94,6 +129,7 @@ fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cell
     let mut connectivity = Vec::new();
     let mut tags = Vec::new();
     let mut tet_lines = Vec::new();
+    let mut regions = Vec::new();
     for i in 0..count {
         let mut f = lines.fields(&format!("tetrahedron {} of {count}", i + 1))?;
         let index = f.usize("the tetrahedron index")?;
@@ -113,7 +149,14 @@ fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cell
                 ))
             })?;
         }
-        f.skip(attributes, "a tetrahedron attribute")?;
+        if attributes > 0 {
+            let region = f.f64("the region attribute")?;
+            if region.fract() != 0.0 || region.abs() > 1e15 {
+                return Err(f.error(format!("the region attribute {region} is not an integer")));
+            }
+            regions.push(region as i64);
+            f.skip(attributes - 1, "a tetrahedron attribute")?;
+        }
         f.end("the tetrahedron's nodes and attributes")?;
         connectivity.extend(tet);
         tags.push(index);
@@ -128,12 +171,15 @@ fn parse_ele(path: &Path, text: &str, base: usize, points: usize) -> Result<Cell
             ),
         ));
     }
-    Ok(Cells {
-        kind: TetElement::Tet4,
-        connectivity,
-        tags,
-        lines: tet_lines,
-    })
+    Ok((
+        Cells {
+            kind: TetElement::Tet4,
+            connectivity,
+            tags,
+            lines: tet_lines,
+        },
+        regions,
+    ))
 }
 
 #[cfg(test)]

@@ -179,6 +179,20 @@ impl MaterialModel {
         }
     }
 
+    /// Checks the model's constants (the error names the first bad one).
+    pub fn validate(&self) -> Result<(), ParameterError> {
+        match self {
+            &MaterialModel::MooneyRivlin { c10, c01 } => {
+                isochor_energies::MooneyRivlin::new(c10, c01).map(drop)
+            }
+            &MaterialModel::Yeoh { c10, c20, c30 } => {
+                isochor_energies::Yeoh::new(c10, c20, c30).map(drop)
+            }
+            MaterialModel::Ogden { terms } => isochor_energies::Ogden::new(terms).map(drop),
+            _ => Ok(()),
+        }
+    }
+
     /// The initial shear modulus the model's constants set, or `None` for the models whose
     /// parameter is `mu` itself.
     pub fn shear_modulus(&self) -> Option<f64> {
@@ -265,6 +279,7 @@ impl Material {
     ///
     /// Errors: constants that give no positive shear modulus.
     pub fn with_model(mut self, model: MaterialModel) -> Result<Self, ParameterError> {
+        model.validate()?;
         if let Some(mu) = model.shear_modulus() {
             if !(mu.is_finite() && mu > 0.0) {
                 return Err(ParameterError {
@@ -310,6 +325,7 @@ impl Material {
                 reason,
             })
         };
+        self.model.validate()?;
         Lame::shear_modulus(self.young(), self.nu)?;
         if let Some(mu) = self.model.shear_modulus() {
             if (mu - self.mu).abs() > 1e-12 * mu.abs() {
