@@ -192,7 +192,7 @@ mod tests {
 
     fn parse_pair(node: &str, ele: &str) -> Result<TetMesh, MeshError> {
         let (x, base) = parse_node(Path::new("t.node"), node)?;
-        let cells = parse_ele(Path::new("t.ele"), ele, base, x.len())?;
+        let (cells, _) = parse_ele(Path::new("t.ele"), ele, base, x.len())?;
         Ok(assemble(Path::new("t.ele"), numbered(x, base), cells)?.into_corners())
     }
 
