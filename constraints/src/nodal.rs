@@ -207,10 +207,10 @@ impl ConstraintSet for NodalConstraints {
         match self.compliance {
             NodalCompliance::Lumped => {
                 let mut diagonal = vec![0.0; self.num_constraints()];
-                for e in 0..self.elements.len() {
+                for (e, inverse_kappa) in scale.iter().enumerate() {
                     let products = self.elements.corner_products(e);
                     for (v, row) in self.elements.corners(e).into_iter().zip(products) {
-                        diagonal[v] += row.iter().sum::<f64>() * scale[e];
+                        diagonal[v] += row.iter().sum::<f64>() * inverse_kappa;
                     }
                 }
                 Compliance::Diagonal(diagonal)

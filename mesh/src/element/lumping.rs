@@ -61,14 +61,14 @@ impl ElementMesh {
             .collect();
         let mut out = vec![0.0; self.num_nodes()];
         let mut local = vec![0.0; self.kind().num_nodes()];
-        for e in 0..self.num_elements() {
+        for (e, rho) in density.iter().enumerate() {
             local.fill(0.0);
             for (w, values) in rest.element_weights(e).iter().zip(&per_point) {
                 for (l, v) in local.iter_mut().zip(values) {
                     *l += w * v;
                 }
             }
-            let scale = density[e] * rest.element_volume(e) / local.iter().sum::<f64>();
+            let scale = rho * rest.element_volume(e) / local.iter().sum::<f64>();
             for (&a, l) in self.element(e).iter().zip(&local) {
                 out[a] += scale * l;
             }

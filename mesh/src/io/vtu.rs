@@ -936,7 +936,7 @@ fn field(src: &Source, a: &Array, count: usize) -> Result<Field, MeshError> {
         ("Float32" | "Float64", 9) => FieldValues::Tensor(
             values::<f64>(src, a, 9 * count)?
                 .chunks_exact(9)
-                .map(|row_major| Matrix3::from_row_slice(row_major))
+                .map(Matrix3::from_row_slice)
                 .collect(),
         ),
         (k, 1) if k.starts_with("Int") || k.starts_with("UInt") => {
