@@ -91,8 +91,11 @@ fn the_pneunet_bends_when_its_chambers_are_pressurized() {
     assert!((z / z_nh - 1.0).abs() < 0.1, "{z:e} vs {z_nh:e}");
 }
 
-/// The same actuator on 10-node tets (Taylor-Hood P2-P1): about 45,000 nodes, so it runs
-/// with `--ignored`.
+/// The same actuator on 10-node tets (Taylor-Hood P2-P1), run with `--ignored` (30 s in the
+/// test profile). Measured 2026-11-30: the tip moves 1.048 mm down in 6 Newton iterations,
+/// against 1.817 mm on the 4-node tets of the same mesh: the linear tets bend the actuator
+/// more, not less, here; which of the two is closer to the converged answer needs a
+/// refinement study of this geometry (not yet done).
 #[test]
 #[ignore]
 fn the_pneunet_bends_on_quadratic_tets() {
