@@ -4,6 +4,7 @@
 /// `(name, TOML text)` of every built-in scene, in the order `isochor list` prints them.
 pub const BUILTIN: &[(&str, &str)] = &[
     ("cantilever", include_str!("../builtin/cantilever.toml")),
+    ("spine-arm", include_str!("../builtin/spine-arm.toml")),
     (
         "compressed-block",
         include_str!("../builtin/compressed-block.toml"),
@@ -57,7 +58,7 @@ pub fn names() -> impl Iterator<Item = &'static str> {
 /// that is not a built-in scene.
 pub fn reduced(name: &str) -> Option<&'static [&'static str]> {
     let sets: &'static [&'static str] = match name {
-        "cantilever" => &["res=1", "steps=2"],
+        "cantilever" | "spine-arm" => &["res=1", "steps=2"],
         "compressed-block" => &["res=4", "steps=2"],
         "inflated-tube" => &["res=1", "steps=2"],
         // A 10% stretch: the coarsest cylinder does not converge stretched much further in

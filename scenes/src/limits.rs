@@ -158,6 +158,13 @@ fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
             let r = *res as f64;
             ((2.0 * r + 1.0).powi(3), 48.0 * r.powi(3))
         }
+        MeshSpec::Spine { res } => {
+            let r = *res as f64;
+            (
+                (25.0 * r + 1.0) * (3.0 * r + 1.0).powi(2),
+                1260.0 * r.powi(3),
+            )
+        }
         MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
         MeshSpec::File { path } => {
             let (nodes, elements) = file_counts(path)?;
@@ -329,7 +336,8 @@ fn mesh_key(spec: &MeshSpec) -> (&'static str, String) {
         | MeshSpec::Cylinder { res, .. }
         | MeshSpec::Puck { res, .. }
         | MeshSpec::Tube { res, .. }
-        | MeshSpec::Ball { res, .. } => ("mesh.res", format!("res = {res}")),
+        | MeshSpec::Ball { res, .. }
+        | MeshSpec::Spine { res } => ("mesh.res", format!("res = {res}")),
         MeshSpec::Explicit { .. } => ("mesh.tets", "the explicit mesh".to_string()),
         MeshSpec::File { path } => ("mesh.path", format!("the mesh file {}", path.display())),
     }

@@ -236,6 +236,7 @@ pub fn build_mesh(spec: &MeshSpec, element: TetElement) -> Result<ElementMesh, S
                 *outer_radius,
             ))),
         ),
+        MeshSpec::Spine { res } => (generate::spine_arm(*res)?, None),
         MeshSpec::Ball {
             radius,
             res,

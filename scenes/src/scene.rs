@@ -175,6 +175,12 @@ pub enum MeshSpec {
         #[serde(default)]
         center: Vector,
     },
+    /// The spine arm of Francu et al. 2021: a 0.25 x 0.03 x 0.03 m bar along x with five
+    /// square through-holes (`isochor_mesh::generate::spine_arm`, `1260 res^3` tets).
+    Spine {
+        /// Resolution: cells per centimetre.
+        res: usize,
+    },
     /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
     Explicit {
         /// Vertex positions.

@@ -11,6 +11,7 @@
 //! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) |
 //! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) |
 //! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) |
+//! | [`spine_arm`] `res` | `1260 res^3` (a bar with five through-holes) |
 //!
 //! The curved generators also give their true surface for
 //! [`crate::ElementMesh::quadratic_on_surface`]: [`cylinder_surface`] (cylinder and puck),
@@ -23,11 +24,13 @@ mod ball;
 mod cylinder;
 mod grid;
 mod lattice;
+mod spine;
 mod tube;
 
 pub use ball::{ball, ball_surface};
 pub use cylinder::{cylinder, cylinder_surface, puck};
 pub use grid::box_grid;
+pub use spine::{spine_arm, SPINE_SIZE};
 pub use tube::{tube, tube_surface, TubeMesh};
 
 use crate::{MeshError, Vec3};
