@@ -118,7 +118,8 @@ impl Model {
         self.mu
     }
 
-    /// Builds the model of `problem`, with element Hessians projected to PSD if asked.
+    /// Builds the model of `problem` (checked by [`Problem::validate`] first: the caller
+    /// runs it), with element Hessians projected to PSD if asked.
     pub fn new(problem: Problem, project_hessians: bool) -> Result<Self, SolverError> {
         let Problem {
             mesh,
@@ -130,9 +131,6 @@ impl Model {
             loads,
             obstacles,
         } = problem;
-        for obstacle in &obstacles {
-            obstacle.validate()?;
-        }
         let regions = Regions::new(&mesh, material.clone(), regions, |m| {
             elastic_density(method, m)
         })?;

@@ -532,14 +532,7 @@ impl Simulation {
     /// Cauchy stress (NaN where the energy is undefined). The hydrostatic constraint
     /// pressures do not enter it, so it is the same for every method's stress.
     pub fn von_mises(&self, state: &State) -> Vec<f64> {
-        (0..self.model.mesh.num_elements())
-            .map(|e| {
-                material_stress(&self.model, e, &state.positions).map_or(f64::NAN, |s| {
-                    let dev = s - Matrix3::identity() * (s.trace() / 3.0);
-                    (1.5 * dev.norm_squared()).sqrt()
-                })
-            })
-            .collect()
+        self.cauchy_stress(state).iter().map(von_mises).collect()
     }
 
     /// The nodal (P1) pressure field of the methods with one multiplier per vertex
@@ -838,14 +831,15 @@ impl Simulation {
             let inverted = self.model.mesh.count_inverted(&self.state.positions);
             max_inverted = max_inverted.max(inverted);
             let contact = self.model.contact.as_ref();
+            let stress = self.cauchy_stress(&self.state);
             observer(&Frame {
                 index: step,
                 frame: attempt.frame,
                 progress,
                 state: &self.state,
                 tet_pressures: self.tet_pressures(&self.state),
-                von_mises: self.von_mises(&self.state),
-                stress: self.cauchy_stress(&self.state),
+                von_mises: stress.iter().map(von_mises).collect(),
+                stress,
                 nodal_pressures: self.nodal_pressures(&self.state),
                 energies: self.energies(&self.state),
                 inverted_tets: inverted,
@@ -903,6 +897,12 @@ fn material_stress(model: &Model, e: usize, x: &[Vec3]) -> Option<Matrix3<f64>> 
     let j = f.determinant();
     let p = model.regions.energy(e).pk1(&f).ok()?;
     Some(p * f.transpose() / j)
+}
+
+/// Von Mises stress `sqrt(3/2 s:s)` of a Cauchy stress, `s` its deviatoric part.
+fn von_mises(sigma: &Matrix3<f64>) -> f64 {
+    let dev = sigma - Matrix3::identity() * (sigma.trace() / 3.0);
+    (1.5 * dev.norm_squared()).sqrt()
 }
 
 /// Mean Cauchy stress `tr(sigma) / 3` of the model's material at the centroid of element `e`
