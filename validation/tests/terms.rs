@@ -7,7 +7,7 @@
 use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
 };
-use isochor_energies::{standard_neo_hookean, Epidermis, Lame};
+use isochor_energies::{standard_neo_hookean, Epidermis, Lame, MooneyRivlin};
 use isochor_mesh::{ElementMesh, Vec3};
 use isochor_solvers::terms::{
     AugmentedConstraints, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces, FollowerPressure,
@@ -163,7 +163,17 @@ fn terms(mesh: &ElementMesh, seed: f64) -> Vec<Box<dyn EnergyTerm>> {
         Box::new(augmented),
         Box::new(condensed(mesh).0),
         Box::new(inertia),
-        Box::new(Elastic::new(mesh, material, false).unwrap()),
+        Box::new(Elastic::new(mesh, material.clone(), false).unwrap()),
+        // Two materials (a region): every other element Mooney-Rivlin.
+        Box::new(
+            Elastic::with_materials(
+                mesh,
+                vec![material, Arc::new(MooneyRivlin::new(3.0, 1.0).unwrap())],
+                (0..mesh.num_elements()).map(|e| e % 2).collect(),
+                false,
+            )
+            .unwrap(),
+        ),
         Box::new(EpidermisTerm::new(mesh, Epidermis::new(3.0, 1.0).unwrap()).unwrap()),
     ]
 }
