@@ -138,6 +138,9 @@ fn probe(
             .find(|s| s.contact.active_vertices > 0)
             .map_or(f64::NAN, |s| s.step as f64),
         ProbeSpec::ConstraintResidual => input.constraint_residual,
+        ProbeSpec::VolumeErrorIterations { level } => {
+            iterations_to_reach(input.history, *level).map_or(f64::NAN, |n| n as f64)
+        }
         ProbeSpec::PressureVolumeMismatch => {
             let p = pressures(input)?;
             let kappa = input.kappa.filter(|k| *k > 0.0).ok_or_else(|| {
@@ -183,6 +186,29 @@ fn probe(
                 EnergyName::Total => e.kinetic + e.elastic + e.external,
             }
         }
+    })
+}
+
+/// The most iterations any step of `history` needed to bring its volume error to `level`
+/// (each step's errors are recorded before every iteration, then after the last; a step
+/// that iterates counts at least one iteration, since it starts from a state that met its
+/// constraints before the load moved). `None` if a step never reached it, or if no error
+/// was measured (a method without multipliers records zeros).
+fn iterations_to_reach(history: &[StepRecord], level: f64) -> Option<usize> {
+    let measured = history
+        .iter()
+        .flat_map(|s| &s.volume_errors)
+        .any(|&e| e != 0.0);
+    if !measured {
+        return None;
+    }
+    history.iter().try_fold(0, |most, s| {
+        let reached = match s.volume_errors.as_slice() {
+            [] => return None,
+            [_] => 0,
+            [_, after @ ..] => after.iter().position(|&e| e <= level)? + 1,
+        };
+        Some(most.max(reached))
     })
 }
 
@@ -263,5 +289,26 @@ mod tests {
         let a = checkerboard(&mesh, &alternating);
         assert!(s < 0.5 && a > 1.0, "smooth {s}, alternating {a}");
         assert_eq!(checkerboard(&mesh, &vec![1.0; mesh.num_tets()]), 0.0);
+    }
+
+    /// Fig. 8's count: per step the first iteration after which the volume error is at the
+    /// level, the most over the steps; at least one for a step that iterates; `None` when
+    /// a step never gets there or nothing was measured.
+    #[test]
+    fn iterations_to_reach_counts_the_worst_step() {
+        let step = |errors: &[f64]| StepRecord {
+            volume_errors: errors.to_vec(),
+            ..StepRecord::default()
+        };
+        let history = [
+            step(&[0.0, 0.05, 0.02, 0.009, 0.001]),
+            step(&[0.03, 0.008, 1e-5]),
+            step(&[0.0]),
+        ];
+        assert_eq!(iterations_to_reach(&history, 0.01), Some(3));
+        assert_eq!(iterations_to_reach(&history, 0.025), Some(2));
+        assert_eq!(iterations_to_reach(&history[1..], 0.01), Some(1));
+        assert_eq!(iterations_to_reach(&history, 1e-4), None);
+        assert_eq!(iterations_to_reach(&[step(&[0.0, 0.0])], 0.01), None);
     }
 }

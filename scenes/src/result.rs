@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// One accepted step or frame.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct StepRecord {
     /// Step or frame index, from 1.
     pub step: usize,
@@ -23,6 +23,10 @@ pub struct StepRecord {
     pub force_residuals: Vec<f64>,
     /// Constraint residual per iteration, then the final one.
     pub constraint_residuals: Vec<f64>,
+    /// Volume error (L1 norm of the constraint residual over the rest volume, Francu et al.
+    /// 2021, Fig. 8) per iteration, then the final one.
+    #[serde(default)]
+    pub volume_errors: Vec<f64>,
     /// Accepted step length per iteration.
     pub step_lengths: Vec<f64>,
     /// Line-search backtracks per iteration.
@@ -56,6 +60,9 @@ pub struct CutRecord {
     pub force_residuals: Vec<f64>,
     /// Constraint residual per iteration, then the last one.
     pub constraint_residuals: Vec<f64>,
+    /// Volume error per iteration, then the last one.
+    #[serde(default)]
+    pub volume_errors: Vec<f64>,
     /// Why it failed.
     pub error: String,
 }

@@ -12,7 +12,7 @@ use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
 use crate::scene::Scene;
 use crate::{problem, SceneError};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use isochor_solvers::{Energies, Frame, Simulation, State, StepReport};
+use isochor_solvers::{Energies, Frame, IterationReport, Simulation, State, StepReport};
 use nalgebra::Matrix3;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -358,26 +358,34 @@ fn execute(
 }
 
 /// The residual histories of a step: per iteration, then the final one.
-fn residuals(report: &StepReport) -> (Vec<f64>, Vec<f64>) {
-    let mut force: Vec<f64> = report.iterations.iter().map(|i| i.force_residual).collect();
-    let mut constraint: Vec<f64> = report
-        .iterations
-        .iter()
-        .map(|i| i.constraint_residual)
-        .collect();
-    force.push(report.force_residual);
-    constraint.push(report.constraint_residual);
-    (force, constraint)
+struct Residuals {
+    force: Vec<f64>,
+    constraint: Vec<f64>,
+    volume_error: Vec<f64>,
+}
+
+impl Residuals {
+    fn of(report: &StepReport) -> Self {
+        let history = |each: fn(&IterationReport) -> f64, last: f64| {
+            report.iterations.iter().map(each).chain([last]).collect()
+        };
+        Residuals {
+            force: history(|i| i.force_residual, report.force_residual),
+            constraint: history(|i| i.constraint_residual, report.constraint_residual),
+            volume_error: history(|i| i.volume_error, report.volume_error),
+        }
+    }
 }
 
 /// The record of a failed attempt that was retried with a smaller increment.
 fn cut_record(report: &StepReport) -> CutRecord {
-    let (force_residuals, constraint_residuals) = residuals(report);
+    let residuals = Residuals::of(report);
     CutRecord {
         t: report.t,
         increment: report.increment,
-        force_residuals,
-        constraint_residuals,
+        force_residuals: residuals.force,
+        constraint_residuals: residuals.constraint,
+        volume_errors: residuals.volume_error,
         error: report.failure.clone().unwrap_or_default(),
     }
 }
@@ -390,7 +398,7 @@ fn record(
     inverted_tets: usize,
     energies: Energies,
 ) -> StepRecord {
-    let (force, constraint) = residuals(report);
+    let residuals = Residuals::of(report);
     StepRecord {
         step: report.step,
         t: report.t,
@@ -398,8 +406,9 @@ fn record(
         cuts: Vec::new(),
         newton_iterations: report.newton_iterations(),
         converged: report.converged,
-        force_residuals: force,
-        constraint_residuals: constraint,
+        force_residuals: residuals.force,
+        constraint_residuals: residuals.constraint,
+        volume_errors: residuals.volume_error,
         step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
         backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
         shifts: report.iterations.iter().map(|i| i.regularization).collect(),

@@ -711,6 +711,14 @@ pub enum ProbeSpec {
     InvertedTets,
     /// The final step's constraint residual (max-norm).
     ConstraintResidual,
+    /// The most iterations any accepted step needed to bring its volume error (the L1 norm
+    /// of the constraint residual over the rest volume, Francu et al. 2021, Fig. 8) to
+    /// `level` or below, counting at least one iteration per step that iterates (NaN if a
+    /// step never did, or if no error was measured: a method without multipliers).
+    VolumeErrorIterations {
+        /// The volume error to reach (Fig. 8: 0.01).
+        level: f64,
+    },
     /// `(V - V_expected) / V_rest`, with `V_expected = sum_e V_e (1 + p_e / kappa)` the volume the
     /// per-tet pressures imply (tension-positive pressures, `kappa` of the mixed methods).
     PressureVolumeMismatch,

@@ -110,7 +110,9 @@ impl Bounds {
             | ProbeSpec::RunVolumeRatio { .. }
             | ProbeSpec::PressureVolumeMismatch => self.volume(),
             // Counts: exact.
-            ProbeSpec::InvertedTets | ProbeSpec::FirstContact => Tolerance::absolute(0.5),
+            ProbeSpec::InvertedTets
+            | ProbeSpec::FirstContact
+            | ProbeSpec::VolumeErrorIterations { .. } => Tolerance::absolute(0.5),
             // A converged step's residual is below the tolerance; its value is rounding.
             ProbeSpec::ConstraintResidual => Tolerance::absolute(self.volume),
             ProbeSpec::MaxPenetration => Tolerance::absolute(self.penetration),

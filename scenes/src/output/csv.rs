@@ -7,10 +7,11 @@ use std::path::Path;
 
 /// `iterations.csv`: one row per Newton iteration of every attempt of every step (the final
 /// residuals of an attempt have empty `step_length`, `backtracks` and `shift`); `attempt`
-/// counts the attempts of a step, cut ones (with their `t`) before the accepted one.
+/// counts the attempts of a step, cut ones (with their `t`) before the accepted one;
+/// `volume_error` is the L1 norm of the constraint residual over the rest volume.
 pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,iteration,force_residual,constraint_residual,step_length,backtracks,shift,attempt\n",
+        "step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt\n",
     );
     for s in history {
         for (attempt, cut) in s.cuts.iter().enumerate() {
@@ -20,9 +21,10 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
                 .zip(&cut.constraint_residuals)
                 .enumerate()
             {
+                let v = volume_error(&cut.volume_errors, i);
                 let _ = writeln!(
                     out,
-                    "{},{:e},{i},{f:e},{c:e},,,,{}",
+                    "{},{:e},{i},{f:e},{c:e},{v},,,,{}",
                     s.step,
                     cut.t,
                     attempt + 1
@@ -43,14 +45,20 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
                     }
                     _ => Default::default(),
                 };
+            let v = volume_error(&s.volume_errors, i);
             let _ = writeln!(
                 out,
-                "{},{:e},{i},{f:e},{c:e},{len},{back},{shift},{attempt}",
+                "{},{:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt}",
                 s.step, s.t
             );
         }
     }
     super::write_file(path, out.as_bytes())
+}
+
+/// The `i`-th volume error, empty if not recorded (a run resumed from an older checkpoint).
+fn volume_error(errors: &[f64], i: usize) -> String {
+    errors.get(i).map(|v| format!("{v:e}")).unwrap_or_default()
 }
 
 /// `steps.csv`: one row per accepted step or frame.

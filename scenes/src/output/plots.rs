@@ -73,13 +73,18 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-/// Newton residuals per iteration across steps, log scale.
+/// Newton residuals and the volume error per iteration across steps, log scale.
 pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Result<(), SceneError> {
     register_font();
     let positive = |v: &f64| v.is_finite() && *v > 0.0;
     let all = history
         .iter()
-        .flat_map(|s| s.force_residuals.iter().chain(&s.constraint_residuals))
+        .flat_map(|s| {
+            s.force_residuals
+                .iter()
+                .chain(&s.constraint_residuals)
+                .chain(&s.volume_errors)
+        })
         .copied()
         .filter(positive);
     let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
@@ -112,12 +117,15 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
         .draw()
         .map_err(|e| plot_error(path, e))?;
     let mut offset = 0usize;
-    let mut labelled = [false; 2];
+    const LABELS: [&str; 3] = ["force residual", "constraint residual", "volume error (L1)"];
+    let mut labelled = [false; 3];
     for s in history {
-        for (k, (series, color)) in [(&s.force_residuals, BLUE), (&s.constraint_residuals, RED)]
-            .into_iter()
-            .enumerate()
-        {
+        let series = [
+            (&s.force_residuals, BLUE),
+            (&s.constraint_residuals, RED),
+            (&s.volume_errors, GREEN),
+        ];
+        for (k, (series, color)) in series.into_iter().enumerate() {
             let points: Vec<(f64, f64)> = series
                 .iter()
                 .enumerate()
@@ -132,12 +140,7 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
                 .map_err(|e| plot_error(path, e))?;
             if !labelled[k] {
                 labelled[k] = true;
-                let label = if k == 0 {
-                    "force residual"
-                } else {
-                    "constraint residual"
-                };
-                drawn.label(label).legend(move |(x, y)| {
+                drawn.label(LABELS[k]).legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
             }
@@ -226,6 +229,7 @@ mod tests {
             converged: true,
             force_residuals: residuals.to_vec(),
             constraint_residuals: residuals.iter().map(|r| r * 0.1).collect(),
+            volume_errors: residuals.iter().map(|r| r * 0.01).collect(),
             step_lengths: vec![1.0; residuals.len() - 1],
             backtracks: vec![0; residuals.len() - 1],
             shifts: vec![0.0; residuals.len() - 1],

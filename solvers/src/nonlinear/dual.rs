@@ -12,8 +12,8 @@
 
 use crate::assembly::System;
 use crate::nonlinear::newton::Newton;
-use crate::nonlinear::target::{max_abs, StepTarget};
-use crate::{SolverError, StepReport};
+use crate::nonlinear::target::{max_abs, volume_error, StepTarget};
+use crate::{IterationReport, SolverError, StepReport};
 use isochor_constraints::Compliance;
 use isochor_mesh::Vec3;
 use std::time::Instant;
@@ -47,10 +47,24 @@ pub fn solve(
     };
     let m = p.len();
     let mut phi = vec![0.0; m];
+    constraints.values(x, &mut phi)?;
+    let residuals = |phi: &[f64], p: &[f64]| {
+        let theta: Vec<f64> = (0..m).map(|i| phi[i] - compliance[i] * p[i]).collect();
+        let scaled: Vec<f64> = theta
+            .iter()
+            .zip(&model.row_volumes)
+            .map(|(t, v)| t / v)
+            .collect();
+        let (residual, error) = (max_abs(&scaled), volume_error(&theta, &model.row_volumes));
+        (theta, residual, error)
+    };
     let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
     let mut dual_converged = false;
     for _ in 0..settings.max_dual_iterations {
         augmented.set_multipliers(p);
+        // The constraint residual and volume error at the start of this dual iteration,
+        // recorded on its Newton iterations (which record residuals before their step).
+        let (_, start_residual, start_error) = residuals(&phi, p);
         // Inexact primal solves: one Newton iteration per dual update (the "single linear
         // solve" of sec. 8.3) until the constraints are met, then a converged primal solve.
         let mut primal = StepReport::default();
@@ -60,20 +74,20 @@ pub fn solve(
             1
         };
         let result = newton.iterate(system, x, target, &mut primal, limit);
-        report.iterations.extend(primal.iterations);
+        report
+            .iterations
+            .extend(primal.iterations.into_iter().map(|i| IterationReport {
+                constraint_residual: start_residual,
+                volume_error: start_error,
+                ..i
+            }));
         report.timings += primal.timings;
         report.force_residual = primal.force_residual;
         let primal_converged = result?;
         constraints.values(x, &mut phi)?;
-        let theta: Vec<f64> = (0..m).map(|i| phi[i] - compliance[i] * p[i]).collect();
-        let residual = max_abs(
-            &theta
-                .iter()
-                .zip(&model.row_volumes)
-                .map(|(t, v)| t / v)
-                .collect::<Vec<_>>(),
-        );
+        let (theta, residual, error) = residuals(&phi, p);
         report.constraint_residual = residual;
+        report.volume_error = error;
         dual_converged = residual <= settings.constraint_tolerance;
         if dual_converged && primal_converged {
             report.converged = true;

@@ -186,10 +186,10 @@ impl Newton {
             }
             report.iterations.push(IterationReport {
                 force_residual: force,
-                constraint_residual: 0.0,
                 step_length: alpha,
                 backtracks,
                 regularization: shift,
+                ..IterationReport::default()
             });
         }
         Ok(false)

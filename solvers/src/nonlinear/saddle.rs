@@ -17,7 +17,9 @@ use crate::linear::{
     KktSolver, LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
 };
 use crate::model::NonlinearScheme;
-use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
+use crate::nonlinear::target::{
+    add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
+};
 use crate::{IterationReport, LinearSolver, LoadLevel, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_mesh::Vec3;
@@ -286,8 +288,10 @@ impl SaddleNewton {
             } = self.linearize(system, x, p, target)?;
             let force = norm(&sigma_f);
             let constraint = max_abs(&scaled(&theta));
+            let volume_error = volume_error(&theta, &volumes);
             report.force_residual = force;
             report.constraint_residual = constraint;
+            report.volume_error = volume_error;
             if !(force.is_finite() && constraint.is_finite()) {
                 return Err(SolverError::NonFinite("the saddle-point residual"));
             }
@@ -377,6 +381,7 @@ impl SaddleNewton {
             report.iterations.push(IterationReport {
                 force_residual: force,
                 constraint_residual: constraint,
+                volume_error,
                 step_length: alpha,
                 backtracks,
                 regularization: shift,

@@ -42,6 +42,12 @@ pub fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, a| m.max(a.abs()))
 }
 
+/// The volume error of Francu et al. 2021, Fig. 8: the L1 norm of the constraint residual
+/// `theta` over the rest volume its rows cover, `sum_i |theta_i| / sum_i V_i`.
+pub fn volume_error(theta: &[f64], row_volumes: &[f64]) -> f64 {
+    theta.iter().map(|t| t.abs()).sum::<f64>() / row_volumes.iter().sum::<f64>()
+}
+
 /// Sets the prescribed DOFs exactly to their targets (after a full step, so that rounding
 /// in `x + (target - x)` never leaves a spurious gap).
 pub fn snap(x: &mut [Vec3], prescribed: &[(usize, f64)]) {

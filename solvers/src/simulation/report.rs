@@ -8,8 +8,13 @@ use std::time::Duration;
 pub struct IterationReport {
     /// Norm of the force residual (free DOFs) before the step.
     pub force_residual: f64,
-    /// Max-norm of the constraint residual `phi - C p` before the step (0 without constraints).
+    /// Max-norm of the constraint residual `phi - C p`, relative to each row's rest volume,
+    /// before the step (for dual ascent: at the start of the dual iteration this Newton
+    /// iteration belongs to; 0 without multipliers).
     pub constraint_residual: f64,
+    /// The volume error of Francu et al. 2021, Fig. 8: the L1 norm of `phi - C p` over the
+    /// rest volume, at the same point as `constraint_residual`.
+    pub volume_error: f64,
     /// Accepted step length.
     pub step_length: f64,
     /// Line-search backtracks.
@@ -52,6 +57,8 @@ pub struct StepReport {
     pub force_residual: f64,
     /// Final constraint residual (max-norm).
     pub constraint_residual: f64,
+    /// Final volume error (see [`IterationReport::volume_error`]).
+    pub volume_error: f64,
     /// Whether the step met both tolerances.
     pub converged: bool,
     /// Where the time went.
