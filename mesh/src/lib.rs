@@ -1,7 +1,7 @@
 //! # isochor-mesh
 //!
 //! Geometry and topology of tetrahedral meshes, with no physics: the linear [`TetMesh`] and
-//! its rest data, the boundary surface, adjacency and k-rings, named selections, volume
+//! its rest data, the boundary surface, adjacency and k-rings, named selections and groups, volume
 //! zones (Sheen et al. 2021, sec. 4 and 6), the element layer of 4- and 10-node tets
 //! ([`element`]: reference elements, quadrature, isoparametric rest geometry, [`ElementMesh`]),
 //! mesh generators, [`probes`] of a deformed state, and file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
@@ -13,6 +13,7 @@ mod closest;
 pub mod element;
 mod error;
 pub mod generate;
+mod groups;
 pub mod io;
 pub mod probes;
 mod selection;
@@ -24,6 +25,7 @@ pub use adjacency::Adjacency;
 pub use closest::{closest_point_on_triangle, TriangleBvh};
 pub use element::{ElementMesh, ElementSurface};
 pub use error::MeshError;
+pub use groups::{PhysicalGroup, PhysicalGroups};
 pub use selection::{FaceSelection, Region, VertexSelection};
 pub use surface::{check_closed_manifold, BoundarySurface, TET_FACES};
 pub use tet_mesh::{shape_matrix, signed_volume, Orientation, TetMesh, DEGENERACY};

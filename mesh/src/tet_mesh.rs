@@ -186,6 +186,26 @@ impl TetMesh {
             .count()
     }
 
+    /// Shape quality of tet `e` at rest: its volume over the cube of its longest edge,
+    /// relative to the regular tet's `1 / (6 sqrt 2)`: 1 for the regular tet, 0.27 for a Kuhn
+    /// tet of a cube, towards 0 for a flat one.
+    pub fn quality(&self, e: usize) -> f64 {
+        let t = self.tets[e];
+        let x = &self.positions;
+        let longest = (0..4)
+            .flat_map(|a| (a + 1..4).map(move |b| (a, b)))
+            .map(|(a, b)| (x[t[a]] - x[t[b]]).norm())
+            .fold(0.0, f64::max);
+        6.0 * std::f64::consts::SQRT_2 * self.rest_volumes[e] / longest.powi(3)
+    }
+
+    /// The lowest [`TetMesh::quality`] of any tet.
+    pub fn worst_quality(&self) -> f64 {
+        (0..self.num_tets())
+            .map(|e| self.quality(e))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Centroid of tet `e` in the rest configuration.
     pub fn centroid(&self, e: usize) -> Vec3 {
         self.tets[e]
@@ -218,6 +238,31 @@ mod tests {
             Vec3::new(0.0, 1.0, 0.0),
             Vec3::new(0.0, 0.0, 1.0),
         ]
+    }
+
+    /// The regular tet has quality 1, a Kuhn tet of a cube 0.27 (`sqrt 2 / 3^1.5`), a flat
+    /// one almost none.
+    #[test]
+    fn quality_is_one_for_the_regular_tet() {
+        let s = 1.0 / 2f64.sqrt();
+        let regular = [
+            Vec3::new(1.0, 0.0, -s),
+            Vec3::new(-1.0, 0.0, -s),
+            Vec3::new(0.0, 1.0, s),
+            Vec3::new(0.0, -1.0, s),
+        ];
+        let mesh = TetMesh::new(regular.to_vec(), vec![[0, 1, 2, 3]]).unwrap();
+        assert!((mesh.quality(0) - 1.0).abs() < 1e-14, "{}", mesh.quality(0));
+        let cube = crate::generate::box_grid(Vec3::zeros(), Vec3::repeat(1.0), [1, 1, 1]).unwrap();
+        let kuhn = 2f64.sqrt() / 3f64.powf(1.5);
+        assert!((cube.worst_quality() - kuhn).abs() < 1e-14);
+        // The same tet squashed to a thousandth of its height: a sliver.
+        let flat = regular
+            .iter()
+            .map(|p| Vec3::new(p.x, p.y, 1e-3 * p.z))
+            .collect();
+        let flat = TetMesh::new(flat, vec![[0, 1, 2, 3]]).unwrap();
+        assert!(flat.quality(0) < 1e-2);
     }
 
     #[test]

@@ -5,6 +5,9 @@
 pub const BUILTIN: &[(&str, &str)] = &[
     ("cantilever", include_str!("../builtin/cantilever.toml")),
     ("spine-arm", include_str!("../builtin/spine-arm.toml")),
+    ("cushion", include_str!("../builtin/cushion.toml")),
+    ("bubble", include_str!("../builtin/bubble.toml")),
+    ("finger", include_str!("../builtin/finger.toml")),
     (
         "compressed-block",
         include_str!("../builtin/compressed-block.toml"),
@@ -59,6 +62,7 @@ pub fn names() -> impl Iterator<Item = &'static str> {
 pub fn reduced(name: &str) -> Option<&'static [&'static str]> {
     let sets: &'static [&'static str] = match name {
         "cantilever" | "spine-arm" => &["res=1", "steps=2"],
+        "cushion" | "bubble" | "finger" => &["res=1", "steps=2"],
         "compressed-block" => &["res=4", "steps=2"],
         "inflated-tube" => &["res=1", "steps=2"],
         // A 10% stretch: the coarsest cylinder does not converge stretched much further in

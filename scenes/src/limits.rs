@@ -165,6 +165,18 @@ fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
                 1260.0 * r.powi(3),
             )
         }
+        // The vertices of the uncarved grid: at most a few percent more.
+        MeshSpec::Cushion { res } | MeshSpec::Bubble { res } => {
+            let r = *res as f64;
+            ((6.0 * r + 1.0).powi(2) * (3.0 * r + 1.0), 552.0 * r.powi(3))
+        }
+        MeshSpec::Finger { res } => {
+            let r = *res as f64;
+            (
+                (20.0 * r + 1.0) * (3.0 * r + 1.0) * (5.0 * r + 1.0),
+                1494.0 * r.powi(3),
+            )
+        }
         MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
         MeshSpec::File { path } => {
             let (nodes, elements) = file_counts(path)?;
@@ -337,7 +349,10 @@ fn mesh_key(spec: &MeshSpec) -> (&'static str, String) {
         | MeshSpec::Puck { res, .. }
         | MeshSpec::Tube { res, .. }
         | MeshSpec::Ball { res, .. }
-        | MeshSpec::Spine { res } => ("mesh.res", format!("res = {res}")),
+        | MeshSpec::Spine { res }
+        | MeshSpec::Cushion { res }
+        | MeshSpec::Bubble { res }
+        | MeshSpec::Finger { res } => ("mesh.res", format!("res = {res}")),
         MeshSpec::Explicit { .. } => ("mesh.tets", "the explicit mesh".to_string()),
         MeshSpec::File { path } => ("mesh.path", format!("the mesh file {}", path.display())),
     }

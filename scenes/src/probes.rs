@@ -5,7 +5,7 @@ use crate::result::StepRecord;
 use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
 use crate::selection::Selections;
 use crate::SceneError;
-use isochor_mesh::probes::{displacement_at, volume_change, volume_ratio};
+use isochor_mesh::probes::{displacement_at, enclosed_volume_ratio, volume_change, volume_ratio};
 use isochor_mesh::{ElementMesh, TetMesh, Vec3, TET_FACES};
 use isochor_solvers::Energies;
 use std::collections::{BTreeMap, HashMap};
@@ -111,6 +111,9 @@ fn probe(
                 None => (0..mesh.num_elements()).collect(),
             };
             volume_ratio(mesh, x, &elements).map_err(message)?
+        }
+        ProbeSpec::ChamberVolumeRatio { selection } => {
+            enclosed_volume_ratio(mesh, x, &selections.faces(selection)?).map_err(message)?
         }
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),

@@ -236,7 +236,10 @@ pub fn build_mesh(spec: &MeshSpec, element: TetElement) -> Result<ElementMesh, S
                 *outer_radius,
             ))),
         ),
-        MeshSpec::Spine { res } => (generate::spine_arm(*res)?, None),
+        MeshSpec::Spine { res } => (generate::spine_arm(*res)?.0, None),
+        MeshSpec::Cushion { res } => (generate::cushion(*res)?.0, None),
+        MeshSpec::Bubble { res } => (generate::bubble(*res)?.0, None),
+        MeshSpec::Finger { res } => (generate::finger(*res)?.0, None),
         MeshSpec::Ball {
             radius,
             res,

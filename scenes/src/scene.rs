@@ -181,6 +181,27 @@ pub enum MeshSpec {
         /// Resolution: cells per centimetre.
         res: usize,
     },
+    /// The "cushion" of Francu et al. 2021, Fig. 6 (shape ours): a 40 x 40 x 10 mm pad with a
+    /// closed 30 x 30 x 4 mm chamber (`isochor_mesh::generate::cushion`, `552 res^3` tets),
+    /// groups `base`, `chamber`, `top`.
+    Cushion {
+        /// Resolution: cells across the thinnest wall.
+        res: usize,
+    },
+    /// The "bubble" of Francu et al. 2021, Fig. 6 (shape ours): a 40 x 40 x 15 mm block with a
+    /// closed 30 x 30 x 6 mm chamber under a 3 mm membrane (`isochor_mesh::generate::bubble`,
+    /// `552 res^3` tets), groups `base`, `chamber`, `membrane`.
+    Bubble {
+        /// Resolution: cells across the membrane.
+        res: usize,
+    },
+    /// The "finger" of Francu et al. 2021, Fig. 6 (shape ours): a 64 x 10 x 16 mm PneuNet-style
+    /// bender with five chambers joined by a channel above a strain-limiting base
+    /// (`isochor_mesh::generate::finger`, `1494 res^3` tets), groups `base`, `chamber`, `tip`.
+    Finger {
+        /// Resolution: cells across a chamber wall.
+        res: usize,
+    },
     /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
     Explicit {
         /// Vertex positions.
@@ -368,9 +389,10 @@ pub struct SelectionSpec {
     pub all: bool,
     /// Explicit vertex indices (only for generated meshes whose numbering is known).
     pub vertices: Option<Vec<usize>>,
-    /// A Gmsh physical group of the mesh file, by name (or by number if unnamed): a surface
-    /// group selects its triangles and their vertices, a volume group its tets and their
-    /// vertices (with `surface`, its tets' boundary faces and their vertices).
+    /// A named group of the mesh, by name (or by number if unnamed): a Gmsh physical group or
+    /// TetGen region of the mesh file, or a group the generator names (spine, cushion, bubble,
+    /// finger). A surface group selects its triangles and their vertices, a volume group its
+    /// tets and their vertices (with `surface`, its tets' boundary faces and their vertices).
     pub physical: Option<String>,
     /// Geometric tolerance (default: 1e-6 times the mesh's bounding-box diagonal).
     pub tolerance: Option<f64>,
@@ -725,6 +747,13 @@ pub enum ProbeSpec {
     /// Mean jump of the per-tet pressure across interior faces divided by the pressure's
     /// standard deviation (about 1.13 for white noise, small for a smooth field).
     PressureCheckerboard,
+    /// Deformed over rest volume enclosed by the boundary faces of a selection that form a
+    /// closed surface, such as a chamber's walls (divergence theorem, exact on 3- and 6-node
+    /// faces): above 1 for an inflated chamber.
+    ChamberVolumeRatio {
+        /// The selection of faces (e.g. `physical = "chamber"`).
+        selection: String,
+    },
     /// Mean increase of the distance from an axis of the vertices of a selection.
     RadiusIncrease {
         /// The selection whose vertices are measured.
@@ -1078,7 +1107,8 @@ impl Scene {
                 ProbeSpec::VolumeRatio { selection: Some(s) } => {
                     check_selection(format!("{key}.selection"), s)?
                 }
-                ProbeSpec::RadiusIncrease { selection, .. } => {
+                ProbeSpec::RadiusIncrease { selection, .. }
+                | ProbeSpec::ChamberVolumeRatio { selection } => {
                     check_selection(format!("{key}.selection"), selection)?
                 }
                 _ => {}

@@ -3,10 +3,12 @@
 //! then selects nodes (vertices, and on a 10-node mesh the mid-edge nodes inside), boundary
 //! faces (all three corners inside) or elements (corner centroid inside). A geometric
 //! selection applies to any mesh of the same shape and element; a `physical` one takes a
-//! Gmsh physical group of the mesh file (then cut by the region, if one is given).
+//! named group of the mesh: a Gmsh physical group or TetGen region of the mesh file, or a
+//! group its generator names (then cut by the region, if one is given).
 
 use crate::scene::{MeshSpec, SelectionSpec};
 use crate::SceneError;
+use isochor_mesh::generate;
 use isochor_mesh::io::{
     read_gmsh_with_groups, read_tetgen_with_regions, PhysicalGroup, PhysicalGroups,
 };
@@ -40,8 +42,8 @@ struct Physical {
 }
 
 impl<'a> Selections<'a> {
-    /// Prepares the selections of `specs` on `elements`, built from `source` (whose Gmsh
-    /// physical groups are read if a selection names one).
+    /// Prepares the selections of `specs` on `elements`, built from `source` (whose named
+    /// groups are read from its file, or generated, if a selection names one).
     pub fn new(
         elements: &'a ElementMesh,
         source: &MeshSpec,
@@ -62,6 +64,17 @@ impl<'a> Selections<'a> {
                     _ => None,
                 };
                 (groups, format!("the mesh file {}", path.display()))
+            }
+            MeshSpec::Spine { .. }
+            | MeshSpec::Cushion { .. }
+            | MeshSpec::Bubble { .. }
+            | MeshSpec::Finger { .. } => {
+                let groups = if wanted {
+                    generated_groups(source)?
+                } else {
+                    None
+                };
+                (groups, "a generated mesh with groups".to_string())
             }
             _ => (None, "a generated mesh".to_string()),
         };
@@ -110,7 +123,7 @@ impl<'a> Selections<'a> {
         };
         let Some(groups) = &self.groups else {
             return Err(error(format!(
-                "physical = \"{key}\" needs a Gmsh .msh or TetGen .node/.ele mesh file, but the scene's mesh is {}",
+                "physical = \"{key}\" needs a mesh with named groups (a Gmsh .msh or TetGen .node/.ele file, or the generators spine, cushion, bubble and finger), but the scene's mesh is {}",
                 self.source
             )));
         };
@@ -317,6 +330,18 @@ impl<'a> Selections<'a> {
         }
         Ok(tets)
     }
+}
+
+/// The groups a generator names (its mesh is rebuilt: cheap beside a solve), `None` for a
+/// generator that names none.
+fn generated_groups(spec: &MeshSpec) -> Result<Option<PhysicalGroups>, SceneError> {
+    Ok(Some(match spec {
+        MeshSpec::Spine { res } => generate::spine_arm(*res)?.1,
+        MeshSpec::Cushion { res } => generate::cushion(*res)?.1,
+        MeshSpec::Bubble { res } => generate::bubble(*res)?.1,
+        MeshSpec::Finger { res } => generate::finger(*res)?.1,
+        _ => return Ok(None),
+    }))
 }
 
 /// The region of a selection: the intersection of its primitives.

@@ -155,7 +155,7 @@ fn missing_groups_and_generated_meshes_are_errors() {
         .to_string();
     assert!(
         e.contains("selection 'base'")
-            && e.contains("needs a Gmsh .msh or TetGen .node/.ele mesh file")
+            && e.contains("needs a mesh with named groups")
             && e.contains("generated mesh"),
         "{e}"
     );

@@ -105,6 +105,7 @@ impl Bounds {
             }
             ProbeSpec::VolumeChange
             | ProbeSpec::VolumeRatio { .. }
+            | ProbeSpec::ChamberVolumeRatio { .. }
             | ProbeSpec::MinVolumeRatio
             | ProbeSpec::MaxVolumeRatio
             | ProbeSpec::RunVolumeRatio { .. }

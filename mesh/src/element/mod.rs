@@ -45,6 +45,7 @@ pub use mesh::ElementMesh;
 pub(crate) use mesh::Labels;
 pub use quadrature::{TetQuadrature, TriQuadrature};
 pub use rest::RestGeometry;
+pub(crate) use surface::faces_enclosed_volume;
 pub use surface::ElementSurface;
 pub use tet::{TetElement, TET_EDGES};
 pub use triangle::{TriElement, TRI_EDGES};

@@ -88,30 +88,37 @@ impl ElementSurface {
         nodes
     }
 
-    /// Volume enclosed by the surface at node positions `x`, by the divergence theorem:
-    /// `(1/3) sum_f integral of x . n dA`, with `n dA = (dx/dxi x dx/deta) dxi deta` on the
-    /// isoparametric face. The integrand has degree `3p - 2` for faces of degree `p`, so the
-    /// rule of that degree makes this exact: on a mesh's own boundary it equals the volume of
-    /// the elements ([`super::ElementMesh::rest_volume`] at rest).
+    /// Volume enclosed by the surface at node positions `x`, by the divergence theorem (see
+    /// [`faces_enclosed_volume`]): on a mesh's own boundary it equals the volume of the
+    /// elements ([`super::ElementMesh::rest_volume`] at rest).
     pub fn enclosed_volume(&self, x: &[Vec3]) -> f64 {
-        let rule = match self.kind {
-            TriElement::Tri3 => TriQuadrature::Degree1,
-            TriElement::Tri6 => TriQuadrature::Degree4,
-        };
-        let n = self.kind.num_nodes();
-        let mut values = vec![0.0; n];
-        let mut gradients = vec![Vector2::zeros(); n];
-        let mut volume = 0.0;
-        for (xi, w) in rule.points().iter().zip(rule.weights()) {
-            self.kind.shape_values(xi, &mut values);
-            self.kind.shape_gradients(xi, &mut gradients);
-            for face in self.faces.chunks_exact(n) {
-                let position: Vec3 = face.iter().zip(&values).map(|(&i, v)| *v * x[i]).sum();
-                let tangents = deformation_gradient(x, face, &gradients);
-                let normal = tangents.column(0).cross(&tangents.column(1));
-                volume += w * position.dot(&normal);
-            }
-        }
-        volume / 3.0
+        faces_enclosed_volume(self.kind, &self.faces, x)
     }
+}
+
+/// `(1/3) sum_f integral of x . n dA` over faces of `kind` (`faces` holds `kind.num_nodes()`
+/// nodes per face), with `n dA = (dx/dxi x dx/deta) dxi deta` on the isoparametric face: the
+/// volume the faces enclose when they form a closed surface, positive if they point out of
+/// it. The integrand has degree `3p - 2` for faces of degree `p`, so the rule of that degree
+/// makes this exact.
+pub(crate) fn faces_enclosed_volume(kind: TriElement, faces: &[usize], x: &[Vec3]) -> f64 {
+    let rule = match kind {
+        TriElement::Tri3 => TriQuadrature::Degree1,
+        TriElement::Tri6 => TriQuadrature::Degree4,
+    };
+    let n = kind.num_nodes();
+    let mut values = vec![0.0; n];
+    let mut gradients = vec![Vector2::zeros(); n];
+    let mut volume = 0.0;
+    for (xi, w) in rule.points().iter().zip(rule.weights()) {
+        kind.shape_values(xi, &mut values);
+        kind.shape_gradients(xi, &mut gradients);
+        for face in faces.chunks_exact(n) {
+            let position: Vec3 = face.iter().zip(&values).map(|(&i, v)| *v * x[i]).sum();
+            let tangents = deformation_gradient(x, face, &gradients);
+            let normal = tangents.column(0).cross(&tangents.column(1));
+            volume += w * position.dot(&normal);
+        }
+    }
+    volume / 3.0
 }

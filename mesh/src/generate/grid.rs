@@ -40,20 +40,31 @@ pub fn box_grid(min: Vec3, max: Vec3, cells: [usize; 3]) -> Result<TetMesh, Mesh
             ));
         }
     }
+    let lines = [0, 1, 2].map(|a| {
+        (0..=cells[a])
+            .map(|i| min[a] + (max[a] - min[a]) * (i as f64 / cells[a] as f64))
+            .collect::<Vec<f64>>()
+    });
+    let (positions, tets) = lined_grid(&lines);
+    TetMesh::new(positions, tets)
+}
+
+/// The vertices and tets of the grid whose hexes lie between consecutive `lines` along each
+/// axis (increasing, at least two per axis), split as [`box_grid`]'s: vertex `(i, j, k)` is
+/// `(lines[0][i], lines[1][j], lines[2][k])`, and hex `c = i + nx (j + ny k)` holds tets
+/// `6 c .. 6 c + 6`.
+pub(super) fn lined_grid(lines: &[Vec<f64>; 3]) -> (Vec<Vec3>, Vec<[usize; 4]>) {
     let lattice = Lattice {
-        cells,
+        cells: [0, 1, 2].map(|a| lines[a].len() - 1),
         periodic: [false; 3],
         mirror: [None; 3],
     };
     let positions = lattice
         .points()
         .into_iter()
-        .map(|p| {
-            let t = Vec3::from_fn(|a, _| p[a] as f64 / cells[a] as f64);
-            min + (max - min).component_mul(&t)
-        })
+        .map(|[i, j, k]| Vec3::new(lines[0][i], lines[1][j], lines[2][k]))
         .collect();
-    TetMesh::new(positions, lattice.tets())
+    (positions, lattice.tets())
 }
 
 #[cfg(test)]

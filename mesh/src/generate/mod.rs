@@ -2,16 +2,23 @@
 //! (the constructor re-orients none) and places boundary vertices on the analytic surface.
 //! The disk and ball maps are singular at the corners of the square or cube they map, so the
 //! worst tet there flattens as `res` grows (normalized volume `V / l_max^3` relative to the
-//! regular tet: Kuhn box 0.27; cylinder 0.20 at res 4, 0.11 at res 8; ball 0.19 at res 4,
-//! 0.07 at res 8).
+//! regular tet, [`crate::TetMesh::quality`]: Kuhn box 0.27; cylinder 0.20 at res 4, 0.11 at
+//! res 8; ball 0.19 at res 4, 0.07 at res 8). The spine arm and the pneumatic actuators are
+//! box grids with hexes removed, graded per axis so that thin walls get whole cells: their
+//! worst tet is that of their flattest hex, the same at every `res`. They name their own
+//! groups of boundary faces ([`crate::PhysicalGroups`]: a chamber's walls, a clamped end),
+//! which scenes select by name as a Gmsh file's.
 //!
-//! | generator | tets |
-//! |---|---|
-//! | [`box_grid`] `[nx, ny, nz]` | `6 nx ny nz` |
-//! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) |
-//! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) |
-//! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) |
-//! | [`spine_arm`] `res` | `1260 res^3` (a bar with five through-holes) |
+//! | generator | tets | worst quality |
+//! |---|---|---|
+//! | [`box_grid`] `[nx, ny, nz]` | `6 nx ny nz` | 0.27 (cubic cells) |
+//! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) | 0.20 at res 4 |
+//! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) | 0.26 at res 2 |
+//! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) | 0.19 at res 4 |
+//! | [`spine_arm`] `res` | `1260 res^3` (a bar with five through-holes) | 0.27 |
+//! | [`cushion`] `res` | `552 res^3` (res 2: 4,416; a pad with a flat chamber) | 0.18 |
+//! | [`bubble`] `res` | `552 res^3` (res 2: 4,416; a chamber under a membrane) | 0.18 |
+//! | [`finger`] `res` | `1494 res^3` (res 2: 11,952; five chambers joined by a channel) | 0.12 |
 //!
 //! The curved generators also give their true surface for
 //! [`crate::ElementMesh::quadratic_on_surface`]: [`cylinder_surface`] (cylinder and puck),
@@ -21,14 +28,21 @@
 //! rings) stay straight. Rims are edges of both a wall and a cap, and so follow the wall.
 
 mod ball;
+mod bubble;
+mod carved;
+mod cushion;
 mod cylinder;
+mod finger;
 mod grid;
 mod lattice;
 mod spine;
 mod tube;
 
 pub use ball::{ball, ball_surface};
+pub use bubble::{bubble, BUBBLE_SIZE};
+pub use cushion::{cushion, CUSHION_SIZE};
 pub use cylinder::{cylinder, cylinder_surface, puck};
+pub use finger::{finger, FINGER_SIZE};
 pub use grid::box_grid;
 pub use spine::{spine_arm, SPINE_SIZE};
 pub use tube::{tube, tube_surface, TubeMesh};
@@ -109,4 +123,59 @@ fn cells_along(name: &'static str, length: f64, cell: f64, max: usize) -> Result
         ));
     }
     Ok(n as usize)
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use crate::{check_closed_manifold, PhysicalGroups, TetMesh};
+    use std::collections::HashSet;
+
+    /// The quality of the Kuhn tets of an `a x b x c` hex: volume `a b c / 6`, longest edge
+    /// the hex's diagonal.
+    pub fn kuhn_quality(a: f64, b: f64, c: f64) -> f64 {
+        6.0 * std::f64::consts::SQRT_2 * (a * b * c / 6.0) / (a * a + b * b + c * c).powf(1.5)
+    }
+
+    /// Checks a generated mesh with groups: positive tets, a closed manifold surface of area
+    /// `area` enclosing `volume`, groups made of boundary faces and disjoint, and a closed
+    /// `chamber` group enclosing `chamber` with its faces pointing into the cavity (the
+    /// divergence theorem gives minus its volume). Exact up to rounding.
+    pub fn check_generated(
+        mesh: &TetMesh,
+        groups: &PhysicalGroups,
+        volume: f64,
+        area: f64,
+        chamber: f64,
+    ) {
+        assert_eq!(mesh.reoriented(), 0);
+        let boundary = mesh.boundary().unwrap();
+        check_closed_manifold(boundary.triangles()).unwrap();
+        let x = mesh.positions();
+        assert!((mesh.rest_volume() - volume).abs() < 1e-12 * volume);
+        assert!((boundary.enclosed_volume(x) - volume).abs() < 1e-12 * volume);
+        assert!(
+            (boundary.rest_area() - area).abs() < 1e-12 * area,
+            "area {} != {area}",
+            boundary.rest_area()
+        );
+        let faces: HashSet<[usize; 3]> = boundary.triangles().iter().copied().collect();
+        let mut seen = HashSet::new();
+        for (key, group) in groups.iter() {
+            assert!(!group.faces.is_empty(), "{key} is empty");
+            for f in &group.faces {
+                assert!(faces.contains(f), "{key}: {f:?} is no boundary face");
+                assert!(seen.insert(*f), "{key}: {f:?} is in two groups");
+            }
+        }
+        let walls = &groups.get("chamber").unwrap().faces;
+        check_closed_manifold(walls).unwrap();
+        let enclosed: f64 = walls
+            .iter()
+            .map(|&[a, b, c]| x[a].dot(&x[b].cross(&x[c])) / 6.0)
+            .sum();
+        assert!(
+            (enclosed + chamber).abs() < 1e-12 * chamber,
+            "chamber encloses {enclosed}, expected -{chamber}"
+        );
+    }
 }

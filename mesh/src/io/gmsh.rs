@@ -13,6 +13,7 @@ use super::text::{excerpt, Fields, Lines};
 use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
 use crate::{ElementMesh, MeshError, TetMesh, Vec3};
+use crate::{PhysicalGroup, PhysicalGroups};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
@@ -121,77 +122,6 @@ pub fn read_gmsh_with_groups(
     }
     let mesh = assemble(path, nodes, cells)?;
     Ok((mesh, PhysicalGroups::new(groups)))
-}
-
-/// One physical group of surfaces (dimension 2) or volumes (dimension 3).
-#[derive(Debug, Clone, PartialEq)]
-pub struct PhysicalGroup {
-    /// 2 for a surface group, 3 for a volume group.
-    pub dimension: usize,
-    /// The group's number in the file.
-    pub tag: i64,
-    /// Its name in `$PhysicalNames`, if any.
-    pub name: Option<String>,
-    /// Its triangles, as corner vertex indices of the mesh, as listed in the file.
-    pub faces: Vec<[usize; 3]>,
-    /// Its tets, as element indices of the mesh.
-    pub tets: Vec<usize>,
-}
-
-/// The physical groups of a Gmsh file, by key: a group's name, or for an unnamed group its
-/// tag (`"7"`); when two groups would share a key (a surface and a volume group of the same
-/// name or tag), both keys are prefixed with the dimension (`"2:7"`, `"3:7"`).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct PhysicalGroups {
-    groups: BTreeMap<String, PhysicalGroup>,
-}
-
-impl PhysicalGroups {
-    pub(crate) fn new(groups: Vec<PhysicalGroup>) -> Self {
-        let key = |g: &PhysicalGroup| g.name.clone().unwrap_or_else(|| g.tag.to_string());
-        let mut uses = HashMap::new();
-        for g in &groups {
-            *uses.entry(key(g)).or_insert(0) += 1;
-        }
-        let groups = groups
-            .into_iter()
-            .map(|g| {
-                let k = key(&g);
-                let k = if uses[&k] > 1 {
-                    format!("{}:{k}", g.dimension)
-                } else {
-                    k
-                };
-                (k, g)
-            })
-            .collect();
-        PhysicalGroups { groups }
-    }
-
-    /// The group of `key`.
-    pub fn get(&self, key: &str) -> Option<&PhysicalGroup> {
-        self.groups.get(key)
-    }
-
-    /// The keys of all groups, sorted.
-    pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.groups.keys().map(String::as_str)
-    }
-
-    /// The groups with their keys, sorted by key.
-    pub fn iter(&self) -> impl Iterator<Item = (&str, &PhysicalGroup)> {
-        self.groups.iter().map(|(k, g)| (k.as_str(), g))
-    }
-
-    /// Number of groups.
-    pub fn len(&self) -> usize {
-        self.groups.len()
-    }
-
-    /// Whether the file has no physical group of surfaces or volumes.
-    pub fn is_empty(&self) -> bool {
-        self.groups.is_empty()
-    }
 }
 
 /// The elements of one physical group as read: triangles (file node indices, line) and tets.

@@ -20,9 +20,8 @@ mod text;
 mod vtk_binary;
 mod vtu;
 
-pub use gmsh::{
-    read_gmsh, read_gmsh_elements, read_gmsh_with_groups, PhysicalGroup, PhysicalGroups,
-};
+pub use crate::groups::{PhysicalGroup, PhysicalGroups};
+pub use gmsh::{read_gmsh, read_gmsh_elements, read_gmsh_with_groups};
 pub use pvd::write_pvd;
 pub use tetgen::{read_tetgen, read_tetgen_with_regions};
 pub use text::excerpt;

@@ -2,11 +2,10 @@
 //! and boundary markers tolerated, `#` comments skipped; the region attribute of the tets
 //! (TetGen's `-A` switch, the first tet attribute) read as volume groups.
 
-use super::gmsh::{PhysicalGroup, PhysicalGroups};
 use super::text::{excerpt, Lines};
 use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
-use crate::{MeshError, TetMesh, Vec3};
+use crate::{MeshError, PhysicalGroup, PhysicalGroups, TetMesh, Vec3};
 use std::path::Path;
 
 /// Reads a TetGen mesh from `path` with extension `.node` or `.ele` (or none): both
