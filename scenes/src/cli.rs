@@ -92,7 +92,8 @@ pub enum Command {
         /// Repeat over the values of a parameter, e.g. nu=0.49,0.499,0.4999.
         #[arg(long, value_name = "KEY=V1,V2,...")]
         sweep: Option<String>,
-        /// Write compare.csv, compare.md and compare.json to this folder.
+        /// Write compare.csv, compare.md, compare.json, compare.png (with a numeric sweep)
+        /// and compare-residuals.png to this folder (default: compare-SCENE).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// Print exactly one JSON object on stdout.
@@ -259,13 +260,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             set,
             out,
         } => {
-            let out = out.unwrap_or_else(|| {
-                let stem = std::path::Path::new(&scene)
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_else(|| scene.clone());
-                PathBuf::from(format!("study-{stem}"))
-            });
+            let out = out.unwrap_or_else(|| default_out("study", &scene));
             let request = StudyRequest {
                 scene,
                 methods: parse_methods(&methods)?,
@@ -312,6 +307,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             out,
             json,
         } => {
+            let out = out.unwrap_or_else(|| default_out("compare", &scene));
             let request = CompareRequest {
                 scene,
                 methods: methods
@@ -329,7 +325,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
                     .unwrap_or_default(),
                 overrides: parse_overrides(&set)?,
                 sweep,
-                out,
+                out: Some(out),
                 progress: !json,
             };
             let (comparison, written) = compare(&request)?;
@@ -346,6 +342,15 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             Ok(0)
         }
     }
+}
+
+/// The output folder of a command without `--out`: `COMMAND-SCENE` (the scene file's stem).
+fn default_out(command: &str, scene: &str) -> PathBuf {
+    let stem = std::path::Path::new(scene)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| scene.to_string());
+    PathBuf::from(format!("{command}-{stem}"))
 }
 
 /// Prints a run's result (JSON or the summary for people); returns the exit status.

@@ -1,14 +1,20 @@
 //! `isochor compare`: the same scene with several methods (or variants) side by side,
-//! optionally swept over a parameter, as a table like Tables 1 and 2 of Francu et al. 2021.
+//! optionally swept over a parameter, as a table like Tables 1 and 2 of Francu et al. 2021:
+//! the published values of the scene's `[paper]` section beside its own, the factor each
+//! probe changes by over the sweep, and plots of both ([`plots`]).
+
+pub mod plots;
+mod table;
 
 use crate::output::{write_file, OutputDir};
-use crate::overrides::{parse_sweep, Override};
+use crate::overrides::{dotted, parse_sweep, Override};
+use crate::paper::PaperSpec;
 use crate::result::RunResult;
 use crate::run::{run_scene, RunOptions};
+use crate::scene::LengthUnit;
 use crate::{SceneError, SceneSource};
 use isochor_solvers::Method;
-use std::collections::BTreeSet;
-use std::fmt::Write;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// One column of the comparison: a method or a variant.
@@ -42,7 +48,7 @@ pub struct CompareRequest {
     pub overrides: Vec<Override>,
     /// `--sweep KEY=V1,V2,...`.
     pub sweep: Option<String>,
-    /// Output folder for `compare.csv`, `compare.md` and `compare.json`.
+    /// Output folder for `compare.csv`, `compare.md`, `compare.json` and the plots.
     pub out: Option<PathBuf>,
     /// Progress bars on stderr.
     pub progress: bool,
@@ -59,6 +65,19 @@ pub struct CompareRow {
     pub result: Result<RunResult, String>,
 }
 
+impl CompareRow {
+    /// The swept value as a number, if it is one.
+    pub fn sweep_number(&self) -> Option<f64> {
+        self.sweep_value.as_deref()?.parse().ok()
+    }
+
+    /// The value of a probe, if the run converged.
+    fn converged_probe(&self, probe: &str) -> Option<f64> {
+        let r = self.result.as_ref().ok().filter(|r| r.converged)?;
+        r.probes.get(probe).copied().filter(|v| v.is_finite())
+    }
+}
+
 /// The result of a comparison.
 #[derive(Debug, Clone)]
 pub struct Comparison {
@@ -68,6 +87,24 @@ pub struct Comparison {
     pub sweep_key: Option<String>,
     /// Rows in sweep-major order.
     pub rows: Vec<CompareRow>,
+    /// The scene's published values, if it has any.
+    pub paper: Option<PaperSpec>,
+    /// The units the scene shows its length probes in (the rest are shown as measured).
+    pub units: BTreeMap<String, LengthUnit>,
+}
+
+/// How much a probe changes over the sweep for one method or variant: its value at the first
+/// swept value over its value at the last.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Factor {
+    /// Method or variant label.
+    pub label: String,
+    /// The probe.
+    pub probe: String,
+    /// Ours (if both runs converged and the last value is not zero).
+    pub ours: Option<f64>,
+    /// The published one (if the paper gives both values).
+    pub paper: Option<f64>,
 }
 
 /// Parses a comma-separated method list, naming the valid methods on error.
@@ -161,6 +198,12 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
         scene: base.name.clone(),
         sweep_key,
         rows,
+        paper: base.paper.clone(),
+        units: base
+            .probes
+            .iter()
+            .filter_map(|(name, p)| Some((name.clone(), p.unit()?)))
+            .collect(),
     };
     let written = match out {
         Some(dir) => {
@@ -175,6 +218,10 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
             let json = serde_json::to_string_pretty(&comparison.to_json())
                 .map_err(|e| SceneError::Output(e.to_string()))?;
             write_file(&dir.path().join("compare.json"), json.as_bytes())?;
+            if comparison.plots_sweep() {
+                plots::plot_sweep(&dir.path().join(SWEEP_PLOT), &comparison)?;
+            }
+            plots::plot_residuals(&dir.path().join(RESIDUALS_PLOT), &comparison)?;
             Some(dir.commit()?)
         }
         None => None,
@@ -182,8 +229,14 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
     Ok((comparison, written))
 }
 
+/// The plot of every probe against the swept value.
+pub const SWEEP_PLOT: &str = "compare.png";
+/// The plot of the Newton residuals against the accumulated iterations.
+pub const RESIDUALS_PLOT: &str = "compare-residuals.png";
+
 impl Comparison {
-    fn probe_names(&self) -> Vec<String> {
+    /// The probes of the table (every probe but `volume_change`, which has its own column).
+    pub fn probe_names(&self) -> Vec<String> {
         let names: BTreeSet<String> = self
             .rows
             .iter()
@@ -194,160 +247,169 @@ impl Comparison {
         names.into_iter().collect()
     }
 
-    /// Header and cells of the table.
-    fn table(&self) -> (Vec<String>, Vec<Vec<String>>) {
-        let probes = self.probe_names();
-        let mut header = Vec::new();
-        if let Some(k) = &self.sweep_key {
-            header.push(k.clone());
-        }
-        header.extend(
-            [
-                "config",
-                "method",
-                "nu",
-                "tets",
-                "dofs",
-                "steps",
-                "newton_iterations",
-                "converged",
-            ]
-            .map(String::from),
-        );
-        header.extend(probes.iter().cloned());
-        header.extend(
-            ["volume_change_percent", "max_inverted_tets", "wall_time_s"].map(String::from),
-        );
-        let rows = self
-            .rows
-            .iter()
-            .map(|row| {
-                let mut cells = Vec::new();
-                if self.sweep_key.is_some() {
-                    cells.push(row.sweep_value.clone().unwrap_or_default());
-                }
-                cells.push(row.label.clone());
-                match &row.result {
-                    Ok(r) => {
-                        cells.push(r.method.clone());
-                        cells.push(format!("{}", r.nu));
-                        cells.push(r.tets.to_string());
-                        cells.push(r.dofs.to_string());
-                        cells.push(if r.converged {
-                            r.steps.to_string()
-                        } else {
-                            format!("{}/{}", r.steps, r.steps_requested)
-                        });
-                        cells.push(r.newton_iterations.to_string());
-                        cells.push(if r.converged {
-                            "yes".into()
-                        } else {
-                            "no".into()
-                        });
-                        for p in &probes {
-                            cells.push(
-                                r.probes
-                                    .get(p)
-                                    .map_or(String::new(), |v| format!("{v:.6e}")),
-                            );
-                        }
-                        cells.push(format!("{:.4e}", 100.0 * r.volume_change));
-                        cells.push(r.max_inverted_tets.to_string());
-                        cells.push(format!("{:.3}", r.wall_time_s));
-                    }
-                    Err(e) => {
-                        cells.push(format!("error: {e}"));
-                        cells.resize(header.len(), String::new());
-                    }
-                }
-                cells
-            })
-            .collect();
-        (header, rows)
-    }
-
-    /// The table as aligned text.
-    pub fn to_text(&self) -> String {
-        let (header, rows) = self.table();
-        let mut widths: Vec<usize> = header.iter().map(String::len).collect();
-        for row in &rows {
-            for (w, c) in widths.iter_mut().zip(row) {
-                *w = (*w).max(c.len());
-            }
-        }
-        let mut out = format!("scene: {}\n", self.scene);
-        let line = |cells: &[String]| {
-            cells
-                .iter()
-                .zip(&widths)
-                .map(|(c, w)| format!("{c:<w$}"))
-                .collect::<Vec<_>>()
-                .join("  ")
-                .trim_end()
-                .to_string()
-        };
-        let _ = writeln!(out, "{}", line(&header));
-        for row in &rows {
-            let _ = writeln!(out, "{}", line(row));
-        }
+    /// The method and variant labels, in the order of the rows.
+    pub fn labels(&self) -> Vec<String> {
+        let mut labels: Vec<String> = Vec::new();
         for row in &self.rows {
-            if let Ok(r) = &row.result {
-                if let Some(e) = &r.error {
-                    let _ = writeln!(
-                        out,
-                        "{}: stopped at step {}: {e}",
-                        row.label,
-                        r.failed_step.unwrap_or(0)
-                    );
-                }
+            if !labels.contains(&row.label) {
+                labels.push(row.label.clone());
             }
         }
-        out
+        labels
     }
 
-    /// The table as CSV.
-    pub fn to_csv(&self) -> String {
-        let (header, rows) = self.table();
-        let quote = |c: &String| {
-            if c.contains([',', '"', '\n']) {
-                format!("\"{}\"", c.replace('"', "\"\""))
-            } else {
-                c.clone()
+    /// The swept values, in the order of the rows.
+    fn sweep_values(&self) -> Vec<&CompareRow> {
+        let mut firsts: Vec<&CompareRow> = Vec::new();
+        for row in &self.rows {
+            if !firsts.iter().any(|r| r.sweep_value == row.sweep_value) {
+                firsts.push(row);
             }
+        }
+        firsts
+    }
+
+    /// Whether the sweep has two or more values, all numbers (then `compare.png` plots it).
+    pub fn plots_sweep(&self) -> bool {
+        let values = self.sweep_values();
+        self.sweep_key.is_some()
+            && values.len() >= 2
+            && values.iter().all(|r| r.sweep_number().is_some())
+    }
+
+    /// Whether the run sweeps the key the paper's values are published over.
+    fn sweeps_paper_key(&self) -> Option<&PaperSpec> {
+        let paper = self.paper.as_ref()?;
+        let key = self.sweep_key.as_deref()?;
+        (dotted(key) == dotted(&paper.sweep)).then_some(paper)
+    }
+
+    /// The published value of `probe` for a row, when the run sweeps the paper's key and the
+    /// row's value is one the paper gives.
+    pub fn paper_value(&self, row: &CompareRow, probe: &str) -> Option<f64> {
+        self.sweeps_paper_key()?
+            .value(probe, &row.label, row.sweep_number()?)
+    }
+
+    /// The probes with a published value beside at least one row.
+    pub fn paper_probes(&self) -> Vec<String> {
+        self.probe_names()
+            .into_iter()
+            .filter(|p| self.rows.iter().any(|r| self.paper_value(r, p).is_some()))
+            .collect()
+    }
+
+    /// What the paper section contributes, or why it cannot be shown beside these runs.
+    pub fn paper_notes(&self) -> Vec<String> {
+        let Some(paper) = &self.paper else {
+            return Vec::new();
         };
-        let mut out = String::new();
-        for row in std::iter::once(&header).chain(&rows) {
-            let _ = writeln!(
-                out,
-                "{}",
-                row.iter().map(quote).collect::<Vec<_>>().join(",")
-            );
-        }
-        out
-    }
-
-    /// The table as Markdown.
-    pub fn to_markdown(&self) -> String {
-        let (header, rows) = self.table();
-        let mut out = format!("# {}\n\n", self.scene);
-        let cell = |c: &String| c.replace('|', "\\|");
-        let _ = writeln!(
-            out,
-            "| {} |",
-            header.iter().map(cell).collect::<Vec<_>>().join(" | ")
+        let given = format!(
+            "{} = {}",
+            paper.sweep,
+            paper
+                .values
+                .iter()
+                .map(f64::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
         );
-        let _ = writeln!(out, "|{}|", vec!["---"; header.len()].join("|"));
-        for row in &rows {
-            let _ = writeln!(
-                out,
-                "| {} |",
-                row.iter().map(cell).collect::<Vec<_>>().join(" | ")
-            );
+        let source = &paper.source;
+        let key = match &self.sweep_key {
+            None => {
+                return vec![format!(
+                "{source}: published for {given}; sweep {} to see those values beside these runs",
+                paper.sweep
+            )]
+            }
+            Some(k) if self.sweeps_paper_key().is_none() => {
+                return vec![format!(
+                "{source}: published for {given}, not over {k}: cannot match this sweep, not shown"
+            )]
+            }
+            Some(k) => k,
+        };
+        let values = self.sweep_values();
+        let missing: Vec<&str> = values
+            .iter()
+            .filter(|r| r.sweep_number().and_then(|x| paper.position(x)).is_none())
+            .filter_map(|r| r.sweep_value.as_deref())
+            .collect();
+        if missing.len() == values.len() {
+            return vec![format!(
+                "{source}: published for {given}; this sweep has none of those values: cannot match, not shown"
+            )];
         }
-        out
+        let mut notes = vec![format!(
+            "{source}: the published values are the columns \"paper\""
+        )];
+        if !missing.is_empty() {
+            notes.push(format!(
+                "{source}: no values at {key} = {} (published for {given})",
+                missing.join(", ")
+            ));
+        }
+        let absent: Vec<String> = self
+            .labels()
+            .into_iter()
+            .filter(|l| !paper.probes.values().any(|c| c.contains_key(l)))
+            .collect();
+        if !absent.is_empty() {
+            notes.push(format!("{source}: no values for {}", absent.join(", ")));
+        }
+        notes
     }
 
-    /// Every run as JSON.
+    /// The factor every probe changes by over the sweep, per method or variant (none without
+    /// a sweep of two or more values).
+    pub fn factors(&self) -> Vec<Factor> {
+        let values = self.sweep_values();
+        let (Some(first), Some(last)) = (values.first(), values.last()) else {
+            return Vec::new();
+        };
+        if values.len() < 2 {
+            return Vec::new();
+        }
+        let row = |label: &str, at: &CompareRow| {
+            self.rows
+                .iter()
+                .find(|r| r.label == label && r.sweep_value == at.sweep_value)
+        };
+        let ratio = |a: Option<f64>, b: Option<f64>| Some(a? / b?).filter(|f| f.is_finite());
+        let mut factors = Vec::new();
+        for label in self.labels() {
+            let (Some(a), Some(b)) = (row(&label, first), row(&label, last)) else {
+                continue;
+            };
+            for probe in self.probe_names() {
+                factors.push(Factor {
+                    label: label.clone(),
+                    ours: ratio(a.converged_probe(&probe), b.converged_probe(&probe)),
+                    paper: ratio(self.paper_value(a, &probe), self.paper_value(b, &probe)),
+                    probe,
+                });
+            }
+        }
+        factors
+    }
+
+    /// A probe's value in its display unit.
+    pub fn shown(&self, probe: &str, value: f64) -> f64 {
+        self.units
+            .get(probe)
+            .map_or(value, |u| u.from_metres(value))
+    }
+
+    /// A probe's name with its display unit, e.g. `tip_deflection (cm)`.
+    pub fn probe_title(&self, probe: &str) -> String {
+        match self.units.get(probe) {
+            Some(u) => format!("{probe} ({})", u.symbol()),
+            None => probe.to_string(),
+        }
+    }
+
+    /// Every run as JSON (SI units), with the published values beside each run (`paper`),
+    /// the scene's paper section and notes, the factors and the display units.
     pub fn to_json(&self) -> serde_json::Value {
         let runs: Vec<serde_json::Value> = self
             .rows
@@ -365,20 +427,54 @@ impl Comparison {
                             serde_json::json!({ "key": k, "value": val }),
                         );
                     }
+                    let published: serde_json::Map<String, serde_json::Value> = self
+                        .probe_names()
+                        .into_iter()
+                        .filter_map(|p| Some((p.clone(), self.paper_value(row, &p)?.into())))
+                        .collect();
+                    if !published.is_empty() {
+                        map.insert("paper".into(), published.into());
+                    }
                 }
                 v
             })
             .collect();
-        serde_json::json!({ "scene": self.scene, "sweep": self.sweep_key, "runs": runs })
+        let factors: Vec<serde_json::Value> = self
+            .factors()
+            .into_iter()
+            .map(|f| {
+                serde_json::json!({
+                    "config": f.label, "probe": f.probe, "ours": f.ours, "paper": f.paper
+                })
+            })
+            .collect();
+        let units: BTreeMap<&String, &str> =
+            self.units.iter().map(|(p, u)| (p, u.symbol())).collect();
+        serde_json::json!({
+            "scene": self.scene,
+            "sweep": self.sweep_key,
+            "runs": runs,
+            "factors": factors,
+            "units": units,
+            "paper": self.paper,
+            "paper_notes": self.paper_notes(),
+        })
     }
 }
 
-/// Where a comparison wrote its tables, for messages.
+/// Where a comparison wrote its tables and plots, for messages.
 pub fn describe_output(path: &Path) -> String {
-    format!(
-        "wrote {}, {} and {}",
-        path.join("compare.csv").display(),
-        path.join("compare.md").display(),
-        path.join("compare.json").display()
-    )
+    let files: Vec<String> = [
+        "compare.csv",
+        "compare.md",
+        "compare.json",
+        SWEEP_PLOT,
+        RESIDUALS_PLOT,
+    ]
+    .iter()
+    .map(|f| path.join(f))
+    .filter(|p| p.is_file())
+    .map(|p| p.display().to_string())
+    .collect();
+    format!("wrote {}", files.join(", "))
 }

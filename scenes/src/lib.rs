@@ -5,8 +5,8 @@
 //! Francu et al. 2021 and Sheen et al. 2021), problem construction ([`problem`]), probes
 //! ([`probes`]), bounds checked before allocating ([`limits`]), output writers ([`output`]:
 //! VTU frames, `summary.json`, CSV logs, PNG plots), checkpoints of long runs
-//! ([`checkpoint`]), scene checks before a run ([`check`]), method comparisons ([`compare`]) and the `isochor` command-line program
-//! ([`cli`]).
+//! ([`checkpoint`]), scene checks before a run ([`check`]), method comparisons ([`compare`])
+//! beside published values ([`paper`]) and the `isochor` command-line program ([`cli`]).
 //!
 //! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
 //! [`RunResult`].
@@ -24,6 +24,7 @@ pub mod limits;
 pub mod load;
 pub mod output;
 pub mod overrides;
+pub mod paper;
 pub mod probes;
 pub mod problem;
 pub mod result;

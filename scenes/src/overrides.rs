@@ -175,9 +175,18 @@ pub fn check_conflicts(overrides: &[Override]) -> Result<(), SceneError> {
 /// key other than `res` stays as given).
 fn target(o: &Override) -> String {
     match (o.key.as_str(), &o.value) {
-        ("res", _) => "mesh.res".into(),
         ("zones", Value::String(s)) if k_ring(s).is_some() => "zones".into(),
-        (key, _) => FLAT_KEYS
+        (key, _) => dotted(key),
+    }
+}
+
+/// The dotted key a flat or dotted key names, as far as it is known without the scene
+/// (`nu` is `material.nu`, `res` is `mesh.res`; a flat mesh key other than `res` stays as
+/// given).
+pub fn dotted(key: &str) -> String {
+    match key {
+        "res" => "mesh.res".into(),
+        key => FLAT_KEYS
             .iter()
             .find(|(name, _)| *name == key)
             .map_or(key, |(_, path)| path)

@@ -84,6 +84,7 @@ fn probe(
             component,
             scale,
             reduce,
+            ..
         } => {
             let pick = |u: Vec3| match component {
                 ComponentName::X => u.x,
@@ -161,6 +162,7 @@ fn probe(
             selection,
             center,
             axis,
+            ..
         } => {
             let c = Vec3::new(center[0], center[1], center[2]);
             let a = Vec3::new(axis[0], axis[1], axis[2]);

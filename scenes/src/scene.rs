@@ -6,6 +6,7 @@
 //! conditions and loads on those selections, zones, stepping, solver limits, probes, outputs,
 //! and named variants (sets of `--set` overrides that reproduce a figure's columns).
 
+use crate::paper::PaperSpec;
 use crate::SceneError;
 use isochor_mesh::element::TetElement;
 use isochor_mesh::io::VtuEncoding;
@@ -65,6 +66,10 @@ pub struct Scene {
     /// Named sets of overrides (flat or dotted keys, as `--set`), e.g. the columns of a figure.
     #[serde(default)]
     pub variants: BTreeMap<String, BTreeMap<String, toml::Value>>,
+    /// Published values of the probes over a swept parameter, which `isochor compare` prints
+    /// beside its own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper: Option<PaperSpec>,
 }
 
 /// A method name, checked against [`Method::ALL`] while parsing.
@@ -717,6 +722,9 @@ pub enum ProbeSpec {
         /// Over a selection: `mean` (default), `max` or `min`.
         #[serde(default)]
         reduce: Reduce,
+        /// The unit tables and plots show it in (JSON and CSV stay in metres).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        unit: Option<LengthUnit>,
     },
     /// Whole-body deformed/rest volume minus one.
     VolumeChange,
@@ -764,6 +772,9 @@ pub enum ProbeSpec {
         /// Direction of the axis (default `+z`).
         #[serde(default = "z_axis")]
         axis: Vector,
+        /// The unit tables and plots show it in (JSON and CSV stay in metres).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        unit: Option<LengthUnit>,
     },
     /// An energy of the final frame: `kinetic`, `elastic`, `external` or `total`.
     Energy {
@@ -786,6 +797,50 @@ pub enum ProbeSpec {
 
 fn unit() -> f64 {
     1.0
+}
+
+impl ProbeSpec {
+    /// The unit a length probe is shown in, if its scene names one.
+    pub fn unit(&self) -> Option<LengthUnit> {
+        match self {
+            ProbeSpec::Displacement { unit, .. } | ProbeSpec::RadiusIncrease { unit, .. } => *unit,
+            _ => None,
+        }
+    }
+}
+
+/// A unit of length for showing a probe.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+pub enum LengthUnit {
+    /// Metres.
+    #[serde(rename = "m")]
+    Metre,
+    /// Centimetres.
+    #[serde(rename = "cm")]
+    Centimetre,
+    /// Millimetres.
+    #[serde(rename = "mm")]
+    Millimetre,
+}
+
+impl LengthUnit {
+    /// The unit's symbol.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            LengthUnit::Metre => "m",
+            LengthUnit::Centimetre => "cm",
+            LengthUnit::Millimetre => "mm",
+        }
+    }
+
+    /// A length in metres, in this unit.
+    pub fn from_metres(self, metres: f64) -> f64 {
+        match self {
+            LengthUnit::Metre => metres,
+            LengthUnit::Centimetre => 100.0 * metres,
+            LengthUnit::Millimetre => 1000.0 * metres,
+        }
+    }
 }
 
 /// A displacement component.
@@ -1195,6 +1250,9 @@ impl Scene {
                 crate::overrides::check_key_syntax(key)
                     .map_err(|m| bad(&format!("variants.{variant}.{key}"), m))?;
             }
+        }
+        if let Some(paper) = &self.paper {
+            paper.validate(self).map_err(|(key, m)| bad(&key, m))?;
         }
         crate::limits::check_steps(self, origin)
     }

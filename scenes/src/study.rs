@@ -25,7 +25,7 @@
 //! count as reaching it.
 //! Outputs: `study.csv`, `study.md` and the log-log plot `study.png` of error against time.
 
-use crate::output::{finish_plot, plot_error, write_file, OutputDir};
+use crate::output::{finish_plot, plot_error, tick, write_file, OutputDir};
 use crate::overrides::{parse_sweep, Override};
 use crate::result::RunResult;
 use crate::run::{run_scene, RunOptions};
@@ -1102,16 +1102,6 @@ impl Study {
         out += "```\n";
         out
     }
-}
-
-/// A log-axis tick with as many decimals as its first significant digit needs (`0.001`,
-/// `0.05`, `10`).
-fn tick(v: f64) -> String {
-    if !(v.is_finite() && v > 0.0) {
-        return format!("{v}");
-    }
-    let decimals = (-v.log10().floor()).max(0.0) as usize;
-    format!("{v:.decimals$}")
 }
 
 /// Log-log plot of error (percent) against wall time, one curve per series (a color per

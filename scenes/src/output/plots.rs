@@ -56,7 +56,7 @@ pub(crate) fn plot_error(path: &Path, e: impl std::fmt::Display) -> SceneError {
 }
 
 /// Padded `(lo, hi)` of finite values, never empty.
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub(crate) fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
@@ -71,6 +71,16 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
         lo.abs().max(1.0) * 0.05
     };
     (lo - pad, hi + pad)
+}
+
+/// A log-axis tick with as many decimals as its first significant digit needs (`0.001`,
+/// `0.05`, `10`).
+pub(crate) fn tick(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return format!("{v}");
+    }
+    let decimals = (-v.log10().floor()).max(0.0) as usize;
+    format!("{v:.decimals$}")
 }
 
 /// Newton residuals and the volume error per iteration across steps, log scale.
