@@ -6,6 +6,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ("cantilever", include_str!("../builtin/cantilever.toml")),
     ("spine-arm", include_str!("../builtin/spine-arm.toml")),
     (
+        "spine-arm-dynamics",
+        include_str!("../builtin/spine-arm-dynamics.toml"),
+    ),
+    (
         "compressed-block",
         include_str!("../builtin/compressed-block.toml"),
     ),
@@ -79,6 +83,7 @@ pub fn reduced(name: &str) -> Option<&'static [&'static str]> {
             &["res=1", "frames=12", "mesh.center=[0.0, 0.0, 0.1002]"]
         }
         "resting-block" => &["res=2", "steps=1"],
+        "spine-arm-dynamics" => &["res=1", "frames=3"],
         _ => return None,
     };
     Some(sets)
