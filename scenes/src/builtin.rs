@@ -9,6 +9,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ("bubble", include_str!("../builtin/bubble.toml")),
     ("finger", include_str!("../builtin/finger.toml")),
     (
+        "spine-arm-dynamics",
+        include_str!("../builtin/spine-arm-dynamics.toml"),
+    ),
+    (
         "compressed-block",
         include_str!("../builtin/compressed-block.toml"),
     ),
@@ -86,6 +90,7 @@ pub fn reduced(name: &str) -> Option<&'static [&'static str]> {
             &["res=1", "frames=12", "mesh.center=[0.0, 0.0, 0.1002]"]
         }
         "resting-block" => &["res=2", "steps=1"],
+        "spine-arm-dynamics" => &["res=1", "frames=3"],
         _ => return None,
     };
     Some(sets)

@@ -39,21 +39,39 @@ pub fn evaluate(
         .probes
         .iter()
         .map(|(name, spec)| {
-            let value = probe(spec, input, &selections).map_err(|e| match e {
-                ProbeError::Scene(e) => e,
-                ProbeError::Message(message) => SceneError::Probe {
-                    name: name.clone(),
-                    message,
-                },
-            })?;
+            let value = probe(spec, input, &selections).map_err(|e| e.named(name))?;
             Ok((name.clone(), value))
         })
         .collect()
 }
 
+/// Evaluates the probe `name` of `scene` alone (after every step, for
+/// `output.potential_against`).
+pub fn evaluate_one(scene: &Scene, name: &str, input: &ProbeInput<'_>) -> Result<f64, SceneError> {
+    let spec = scene.probes.get(name).ok_or_else(|| SceneError::Probe {
+        name: name.to_string(),
+        message: "the scene has no such probe".into(),
+    })?;
+    let selections = Selections::new(input.mesh, &scene.mesh, &scene.selections)?;
+    probe(spec, input, &selections).map_err(|e| e.named(name))
+}
+
 enum ProbeError {
     Scene(SceneError),
     Message(String),
+}
+
+impl ProbeError {
+    /// The error as the scene's, a message naming the probe `name`.
+    fn named(self, name: &str) -> SceneError {
+        match self {
+            ProbeError::Scene(e) => e,
+            ProbeError::Message(message) => SceneError::Probe {
+                name: name.to_string(),
+                message,
+            },
+        }
+    }
 }
 
 impl From<SceneError> for ProbeError {
@@ -86,12 +104,7 @@ fn probe(
             reduce,
             ..
         } => {
-            let pick = |u: Vec3| match component {
-                ComponentName::X => u.x,
-                ComponentName::Y => u.y,
-                ComponentName::Z => u.z,
-                ComponentName::Norm => u.norm(),
-            };
+            let pick = |u: Vec3| pick(u, *component);
             if let Some(p) = point {
                 let u = displacement_at(mesh, x, &Vec3::new(p[0], p[1], p[2])).map_err(message)?;
                 scale * pick(u)
@@ -104,6 +117,21 @@ fn probe(
                     .collect();
                 reduce_values(&values, *reduce)
             }
+        }
+        ProbeSpec::Position {
+            selection,
+            component,
+            reduce,
+        } => {
+            let values: Vec<f64> = match selection {
+                Some(name) => selections
+                    .nodes(name)?
+                    .iter()
+                    .map(|&v| pick(x[v], *component))
+                    .collect(),
+                None => x.iter().map(|p| pick(*p, *component)).collect(),
+            };
+            reduce_values(&values, *reduce)
         }
         ProbeSpec::VolumeChange => volume_change(mesh, x).map_err(message)?,
         ProbeSpec::VolumeRatio { selection } => {
@@ -188,7 +216,9 @@ fn probe(
                 EnergyName::Kinetic => e.kinetic,
                 EnergyName::Elastic => e.elastic,
                 EnergyName::External => e.external,
-                EnergyName::Total => e.kinetic + e.elastic + e.external,
+                EnergyName::Constraint => e.constraint,
+                EnergyName::Potential => e.elastic + e.constraint + e.external,
+                EnergyName::Total => e.kinetic + e.elastic + e.constraint + e.external,
             }
         }
     })
@@ -215,6 +245,16 @@ fn iterations_to_reach(history: &[StepRecord], level: f64) -> Option<usize> {
         };
         Some(most.max(reached))
     })
+}
+
+/// The component of a vector a probe reads.
+fn pick(u: Vec3, component: ComponentName) -> f64 {
+    match component {
+        ComponentName::X => u.x,
+        ComponentName::Y => u.y,
+        ComponentName::Z => u.z,
+        ComponentName::Norm => u.norm(),
+    }
 }
 
 /// A mesh layer's refusal as a probe's message.
@@ -284,6 +324,81 @@ pub fn checkerboard(mesh: &TetMesh, field: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use isochor_mesh::generate::box_grid;
+
+    /// A position probe reads the deformed coordinates: after a rigid translation by `t` of
+    /// the unit cube, the lowest z is `t_z`, the highest `1 + t_z`, the mean over the top
+    /// face `1 + t_z`, and the distance from the origin of the farthest corner `|(1,1,1) + t|`.
+    #[test]
+    fn position_probe_follows_a_rigid_translation() {
+        let scene = Scene::from_toml_str(
+            r#"
+            name = "cube"
+            description = "unit cube"
+            method = "standard"
+            [mesh]
+            generator = "box"
+            min = [0.0, 0.0, 0.0]
+            max = [1.0, 1.0, 1.0]
+            res = 2
+            [material]
+            young = 1e5
+            nu = 0.3
+            [selections.bottom]
+            plane = { point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }
+            [selections.top]
+            plane = { point = [0.0, 0.0, 1.0], normal = [0.0, 0.0, 1.0] }
+            [[dirichlet]]
+            selection = "bottom"
+            axes = "xyz"
+            [stepping]
+            mode = "quasi-static"
+            steps = 1
+            [probes.lowest]
+            kind = "position"
+            component = "z"
+            reduce = "min"
+            [probes.highest]
+            kind = "position"
+            component = "z"
+            reduce = "max"
+            [probes.top]
+            kind = "position"
+            selection = "top"
+            component = "z"
+            [probes.farthest]
+            kind = "position"
+            component = "norm"
+            reduce = "max"
+            "#,
+            "test",
+        )
+        .unwrap();
+        let mesh = crate::problem::build(&scene).unwrap().problem.mesh;
+        let t = Vec3::new(0.3, -0.2, -0.45);
+        let moved: Vec<Vec3> = mesh.nodes().iter().map(|p| p + t).collect();
+        let values = evaluate(
+            &scene,
+            &ProbeInput {
+                mesh: &mesh,
+                positions: &moved,
+                tet_pressures: &[],
+                constraint_residual: 0.0,
+                energies: Energies::default(),
+                kappa: None,
+                history: &[],
+            },
+        )
+        .unwrap();
+        // Sums of two exact binary fractions: equal to rounding.
+        let close = |a: f64, b: f64| (a - b).abs() <= 4.0 * f64::EPSILON;
+        assert!(close(values["lowest"], t.z), "{values:?}");
+        assert!(close(values["highest"], 1.0 + t.z), "{values:?}");
+        assert!(close(values["top"], 1.0 + t.z), "{values:?}");
+        assert!(
+            close(values["farthest"], (Vec3::repeat(1.0) + t).norm()),
+            "{values:?}"
+        );
+    }
 
     #[test]
     fn checkerboard_separates_smooth_from_alternating_fields() {

@@ -578,6 +578,9 @@ pub fn settings(spec: &SolverSpec) -> Settings {
     if let Some(v) = spec.contact_tolerance {
         s.contact_tolerance = v;
     }
+    if let Some(v) = spec.accept_unconverged {
+        s.accept_unconverged = v;
+    }
     if let Some(v) = spec.max_contact_iterations {
         s.max_contact_iterations = v;
     }

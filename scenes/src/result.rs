@@ -39,12 +39,19 @@ pub struct StepRecord {
     pub inverted_tets: usize,
     /// Kinetic energy.
     pub kinetic_energy: f64,
-    /// Elastic energy.
+    /// Elastic energy (the distortional part for the mixed methods).
     pub elastic_energy: f64,
+    /// Energy of the compliant volume constraints (see [`isochor_solvers::Energies`]).
+    #[serde(default)]
+    pub constraint_energy: f64,
     /// Potential of the external loads.
     pub external_energy: f64,
     /// Wall time of the step in seconds.
     pub wall_time_s: f64,
+    /// The value of the probe `output.potential_against` names, at this step (`None` when
+    /// the scene names none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracked_probe: Option<f64>,
     /// Contact forces of the accepted state (zeros without obstacles).
     pub contact: ContactRecord,
 }
@@ -138,6 +145,18 @@ pub struct RunResult {
     /// Whether the scene is dynamic.
     #[serde(skip)]
     pub dynamic: bool,
+}
+
+impl StepRecord {
+    /// The total potential energy: elastic, constraint and external (no kinetic).
+    pub fn potential_energy(&self) -> f64 {
+        self.elastic_energy + self.constraint_energy + self.external_energy
+    }
+
+    /// The total energy: kinetic plus potential.
+    pub fn total_energy(&self) -> f64 {
+        self.kinetic_energy + self.potential_energy()
+    }
 }
 
 impl RunResult {

@@ -162,6 +162,21 @@ fn execute(
             frame.energies,
         );
         step.cuts = frame.cuts.iter().map(cut_record).collect();
+        if let Some(name) = &scene.output.potential_against {
+            let input = ProbeInput {
+                mesh: &mesh,
+                positions: &frame.state.positions,
+                tet_pressures: &frame.tet_pressures,
+                constraint_residual: frame.report.constraint_residual,
+                energies: frame.energies,
+                kappa,
+                history: &history,
+            };
+            match probes::evaluate_one(scene, name, &input) {
+                Ok(v) => step.tracked_probe = Some(v),
+                Err(e) => write_error = write_error.take().or(Some(e)),
+            }
+        }
         history.push(step);
         last_pressures.clone_from(&frame.tet_pressures);
         last_stress.clone_from(&frame.stress);
@@ -329,7 +344,12 @@ fn execute(
                 )
                 .write(dir.path())?;
             }
-            write_run_outputs(dir.path(), &result, scene.output.plots)?;
+            write_run_outputs(
+                dir.path(),
+                &result,
+                scene.output.plots,
+                scene.output.potential_against.as_deref(),
+            )?;
             if scene.output.writes_preview() {
                 write_preview(
                     &dir.path().join("preview.png"),
@@ -416,8 +436,10 @@ fn record(
         inverted_tets,
         kinetic_energy: energies.kinetic,
         elastic_energy: energies.elastic,
+        constraint_energy: energies.constraint,
         external_energy: energies.external,
         wall_time_s: report.wall_time.as_secs_f64(),
+        tracked_probe: None,
         contact: ContactRecord {
             force: report.contact.force.into(),
             active_vertices: report.contact.active_vertices,

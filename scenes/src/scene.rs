@@ -691,6 +691,10 @@ pub struct SolverSpec {
     pub contact_tolerance: Option<f64>,
     /// Contact multiplier updates per step (default 30).
     pub max_contact_iterations: Option<usize>,
+    /// Dynamics only: accept a step after `max_iterations` Newton iterations even if the
+    /// tolerances are not met (a fixed iteration count, as in Fig. 9 of Francu et al. 2021);
+    /// such steps and the run are reported as not converged.
+    pub accept_unconverged: Option<bool>,
 }
 
 /// Linear solver choice.
@@ -725,6 +729,19 @@ pub enum ProbeSpec {
         /// The unit tables and plots show it in (JSON and CSV stay in metres).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         unit: Option<LengthUnit>,
+    },
+    /// The deformed coordinate `component` of the nodes of a selection (every node if none),
+    /// reduced by `reduce`: e.g. the lowest point of a sagging body (`z`, `min`, negative
+    /// below the rest body's base at z = 0: z is up in the built-in scenes; Fig. 10 of Francu
+    /// et al. 2021). `norm` is the distance from the origin.
+    Position {
+        /// The selection reduced over (every node if none).
+        selection: Option<String>,
+        /// `x`, `y`, `z` or `norm`.
+        component: ComponentName,
+        /// `mean` (default), `max` or `min`.
+        #[serde(default)]
+        reduce: Reduce,
     },
     /// Whole-body deformed/rest volume minus one.
     VolumeChange,
@@ -776,7 +793,8 @@ pub enum ProbeSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         unit: Option<LengthUnit>,
     },
-    /// An energy of the final frame: `kinetic`, `elastic`, `external` or `total`.
+    /// An energy of the final frame: `kinetic`, `elastic`, `external`, `constraint`,
+    /// `potential` (elastic + constraint + external) or `total` (potential + kinetic).
     Energy {
         /// Which energy.
         which: EnergyName,
@@ -880,7 +898,11 @@ pub enum EnergyName {
     Elastic,
     /// Potential of the external loads.
     External,
-    /// Their sum.
+    /// Energy of the compliant volume constraints (the mixed methods' volumetric energy).
+    Constraint,
+    /// Elastic, constraint and external: the total potential energy.
+    Potential,
+    /// Kinetic plus potential.
     Total,
 }
 
@@ -909,6 +931,11 @@ pub struct OutputSpec {
     /// Outline the rest configuration in the preview.
     #[serde(default = "yes")]
     pub preview_rest: bool,
+    /// A probe evaluated after every step: `potential.csv` and (with `plots`)
+    /// `potential.png` give the total potential energy against it, the minimum marked
+    /// (Fig. 9 of Francu et al. 2021: energy against the tip's deflection in dynamics).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub potential_against: Option<String>,
 }
 
 impl OutputSpec {
@@ -932,6 +959,7 @@ impl Default for OutputSpec {
             preview: None,
             preview_field: PreviewField::Displacement,
             preview_rest: true,
+            potential_against: None,
         }
     }
 }
@@ -1159,9 +1187,10 @@ impl Scene {
                         check_selection(format!("{key}.selection"), s)?;
                     }
                 }
-                ProbeSpec::VolumeRatio { selection: Some(s) } => {
-                    check_selection(format!("{key}.selection"), s)?
-                }
+                ProbeSpec::VolumeRatio { selection: Some(s) }
+                | ProbeSpec::Position {
+                    selection: Some(s), ..
+                } => check_selection(format!("{key}.selection"), s)?,
                 ProbeSpec::RadiusIncrease { selection, .. }
                 | ProbeSpec::ChamberVolumeRatio { selection } => {
                     check_selection(format!("{key}.selection"), selection)?
@@ -1214,6 +1243,27 @@ impl Scene {
                     return Err(bad("stepping.dt", format!("{dt} must be finite and > 0")));
                 }
             }
+        }
+        if self.solver.accept_unconverged == Some(true) && !self.is_dynamic() {
+            return Err(bad(
+                "solver.accept_unconverged",
+                "applies to dynamic stepping only: a quasi-static step must be an equilibrium"
+                    .into(),
+            ));
+        }
+        if let Some(name) = self
+            .output
+            .potential_against
+            .as_ref()
+            .filter(|n| !self.probes.contains_key(*n))
+        {
+            return Err(bad(
+                "output.potential_against",
+                format!(
+                    "no probe named '{name}' (probes: {})",
+                    self.probes.keys().cloned().collect::<Vec<_>>().join(", ")
+                ),
+            ));
         }
         if self.output.every == 0 {
             return Err(bad("output.every", "must be at least 1".into()));

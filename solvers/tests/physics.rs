@@ -178,6 +178,55 @@ fn non_convergence_is_an_error_that_keeps_the_last_state() {
     assert_eq!(sim.state().positions, rest);
 }
 
+/// `accept_unconverged` takes every dynamic step after exactly `max_iterations` Newton
+/// iterations (2 here, short of the tolerances for the cantilever swinging under its weight)
+/// and reports it as not converged; without it the same steps fail and are cut. It is refused
+/// in quasi-static stepping and for `dual`.
+#[test]
+fn accept_unconverged_takes_a_fixed_iteration_count_in_dynamics_only() {
+    let stepping = Stepping::ImplicitEuler {
+        dt: 0.016,
+        frames: 3,
+    };
+    for method in [Method::Standard, Method::MixedP1] {
+        let fixed = Settings {
+            max_iterations: 2,
+            accept_unconverged: true,
+            ..Settings::default()
+        };
+        let mut sim = Simulation::new(cantilever(1, method, 0.49), fixed).unwrap();
+        let summary = sim.run(stepping, |_| {}).unwrap();
+        assert_eq!(summary.reports.len(), 3, "{method}: no step was cut");
+        for r in &summary.reports {
+            assert_eq!(r.newton_iterations(), 2, "{method}");
+            assert!(!r.converged && r.failure.is_none(), "{method}: {r:?}");
+        }
+        let strict = Settings {
+            max_iterations: 2,
+            ..Settings::default()
+        };
+        let mut sim = Simulation::new(cantilever(1, method, 0.49), strict).unwrap();
+        let short = match sim.run(stepping, |_| {}) {
+            Ok(summary) => summary.cuts() > 0,
+            Err(_) => true,
+        };
+        assert!(short, "{method}: 2 iterations converged without the option");
+    }
+    let fixed = Settings {
+        max_iterations: 3,
+        accept_unconverged: true,
+        ..Settings::default()
+    };
+    let mut sim = Simulation::new(cantilever(1, Method::Standard, 0.49), fixed).unwrap();
+    let failure = sim.run(Stepping::quasi_static(1), |_| {}).unwrap_err();
+    assert!(
+        failure.to_string().contains("implicit Euler only"),
+        "{failure}"
+    );
+    let err = Simulation::new(cantilever(1, Method::Dual, 0.49), fixed).unwrap_err();
+    assert!(err.to_string().contains("dual"), "{err}");
+}
+
 /// Without supports, implicit Euler under gravity gives `x_N = x_0 + h^2 g N (N + 1) / 2`
 /// exactly (no deformation, constant acceleration), for every method.
 #[test]

@@ -9,7 +9,7 @@ mod common;
 use common::{
     check_outcome, incompressible_volume_bound, probe, try_run, unloaded_volume_tolerance, Outcome,
 };
-use isochor_scenes::RunResult;
+use isochor_scenes::{RunResult, StepRecord};
 use std::ops::RangeInclusive;
 use std::time::Instant;
 
@@ -400,11 +400,7 @@ fn dynamic_cube_large_time_step_energy_stays_bounded() {
     let cases = check_cases("dynamic cube at dt = 33 ms", cases);
     for (what, o) in &cases {
         let r = ran(o);
-        let total: Vec<f64> = r
-            .history
-            .iter()
-            .map(|s| s.kinetic_energy + s.elastic_energy + s.external_energy)
-            .collect();
+        let total: Vec<f64> = r.history.iter().map(StepRecord::total_energy).collect();
         assert!(total.iter().all(|e| e.is_finite()));
         let scale = r
             .history

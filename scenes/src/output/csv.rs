@@ -64,12 +64,12 @@ fn volume_error(errors: &[f64], i: usize) -> String {
 /// `steps.csv`: one row per accepted step or frame.
 pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts\n",
+        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts\n",
     );
     for s in history {
         let _ = writeln!(
             out,
-            "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{},{:e},{}",
+            "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{},{:e},{}",
             s.step,
             s.t,
             s.newton_iterations,
@@ -81,7 +81,8 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
             s.kinetic_energy,
             s.elastic_energy,
             s.external_energy,
-            s.kinetic_energy + s.elastic_energy + s.external_energy,
+            s.total_energy(),
+            s.constraint_energy,
             s.wall_time_s,
             s.contact.force[0],
             s.contact.force[1],

@@ -7,6 +7,7 @@ mod atomic;
 mod csv;
 mod frames;
 mod plots;
+mod potential;
 mod preview;
 
 pub use atomic::OutputDir;
@@ -14,6 +15,7 @@ pub use csv::{write_iterations_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
 pub(crate) use plots::{finish_plot, plot_error, range, register_font, tick};
 pub use plots::{plot_energy, plot_residuals};
+pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};
 pub use preview::{write_preview, PreviewOptions};
 
 use crate::result::{RunResult, StepRecord};
@@ -21,9 +23,15 @@ use crate::SceneError;
 use std::path::Path;
 
 /// Writes `summary.json`, the CSV logs and (if `plots`) the PNG plots of a finished run into
-/// `dir` (the temporary output folder). The iteration log and the residual plot include the
+/// `dir` (the temporary output folder), with the potential energy against the probe
+/// `potential_against` if one is named. The iteration log and the residual plot include the
 /// failed step of a run that failed.
-pub fn write_run_outputs(dir: &Path, result: &RunResult, plots: bool) -> Result<(), SceneError> {
+pub fn write_run_outputs(
+    dir: &Path,
+    result: &RunResult,
+    plots: bool,
+    potential_against: Option<&str>,
+) -> Result<(), SceneError> {
     let json = serde_json::to_string_pretty(&result.to_json())
         .map_err(|e| SceneError::Output(e.to_string()))?;
     write_file(&dir.join("summary.json"), json.as_bytes())?;
@@ -40,6 +48,19 @@ pub fn write_run_outputs(dir: &Path, result: &RunResult, plots: bool) -> Result<
         plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;
         if result.dynamic {
             plot_energy(&dir.join("energy.png"), &title, &result.history)?;
+        }
+    }
+    if let Some(probe) = potential_against {
+        write_potential_csv(&dir.join("potential.csv"), probe, &result.history)?;
+        if plots {
+            let label = result.variant.clone().unwrap_or(result.method.clone());
+            let series = [(label, potential_series(&result.history))];
+            plot_potential(
+                &dir.join("potential.png"),
+                &run_title(result),
+                probe,
+                &series,
+            )?;
         }
     }
     Ok(())

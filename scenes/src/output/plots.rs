@@ -3,8 +3,8 @@
 //!
 //! - `residuals.png`: the Newton force (and constraint) residual of every iteration across
 //!   the steps, on a log scale (like Fig. 7 of Francu et al. 2021).
-//! - `energy.png`: kinetic, elastic, external and total energy against time (like Fig. 8 of
-//!   Sheen et al. 2021).
+//! - `energy.png`: kinetic, elastic, constraint, external and total energy against time
+//!   (like Fig. 8 of Sheen et al. 2021).
 
 use crate::result::StepRecord;
 use crate::SceneError;
@@ -174,13 +174,12 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
 pub fn plot_energy(path: &Path, title: &str, history: &[StepRecord]) -> Result<(), SceneError> {
     register_font();
     type Pick = fn(&StepRecord) -> f64;
-    let series: [(&str, RGBColor, Pick); 4] = [
+    let series: [(&str, RGBColor, Pick); 5] = [
         ("kinetic", RED, |s| s.kinetic_energy),
         ("elastic", BLUE, |s| s.elastic_energy),
+        ("constraint", MAGENTA, |s| s.constraint_energy),
         ("external", GREEN, |s| s.external_energy),
-        ("total", BLACK, |s| {
-            s.kinetic_energy + s.elastic_energy + s.external_energy
-        }),
+        ("total", BLACK, StepRecord::total_energy),
     ];
     let (t0, t1) = range(history.iter().map(|s| s.t));
     let (lo, hi) = range(
@@ -247,8 +246,10 @@ mod tests {
             inverted_tets: 0,
             kinetic_energy: (step as f64).sin().abs(),
             elastic_energy: 1.0,
+            constraint_energy: 0.0,
             external_energy: -0.5 * step as f64,
             wall_time_s: 0.0,
+            tracked_probe: None,
             contact: Default::default(),
         }
     }

@@ -11,7 +11,7 @@ mod matrices;
 mod report;
 mod stepper;
 
-use crate::terms::Inertia;
+use crate::terms::{EnergyTerm, Inertia};
 use crate::{LoadLevel, Method, Problem, Regions, Settings, SolverError};
 use faer::sparse::SparseColMat;
 pub use matrices::Matrices;
@@ -104,8 +104,14 @@ pub struct State {
 pub struct Energies {
     /// Kinetic energy `v^T M v / 2`.
     pub kinetic: f64,
-    /// Stored elastic energy (including epidermis).
+    /// Stored elastic energy (including epidermis): for the mixed, dual and condensed methods
+    /// only the distortional part, their volumetric energy is [`Energies::constraint`].
     pub elastic: f64,
+    /// Energy of the compliant volume constraints: `p^T C p / 2` at the state's pressures
+    /// (equal to the penalty `phi^T C^-1 phi / 2` once `phi = C p`; for `dual`, without the
+    /// base Poisson ratio's augmentation), `phi^T C^-1 phi / 2` for `condensed`, 0 for
+    /// `standard` and for hard constraints (`C = 0`).
+    pub constraint: f64,
     /// Potential of the external loads (gravity, tractions, pressure) relative to the rest
     /// state: minus their work on the displacements.
     pub external: f64,
@@ -362,6 +368,11 @@ impl Simulation {
         check_settings(&settings)?;
         problem.validate()?;
         let model = Model::new(problem, settings.project_hessians)?;
+        if model.scheme == NonlinearScheme::Dual && settings.accept_unconverged {
+            return Err(SolverError::InvalidProblem(
+                "accept_unconverged does not apply to dual: its max_iterations counts primal iterations per dual iteration".into(),
+            ));
+        }
         if model.scheme == NonlinearScheme::Dual && settings.linear != crate::LinearSolver::Direct {
             return Err(SolverError::InvalidProblem(
                 "the dual solver reuses the primal factorization (eq. 41): use the direct linear solver".into(),
@@ -600,7 +611,27 @@ impl Simulation {
         }
         // Relative to rest: minus the work of the loads on the displacements.
         energies.external -= self.rest_external;
+        energies.constraint = self.constraint_energy(state);
         energies
+    }
+
+    /// [`Energies::constraint`] of `state`.
+    fn constraint_energy(&self, state: &State) -> f64 {
+        let p = &state.multipliers;
+        match (&self.model.constraints, &self.model.augmented) {
+            (Some(c), _) if p.len() == c.num_constraints() => {
+                0.5 * c
+                    .compliance()
+                    .nonzero_entries()
+                    .into_iter()
+                    .map(|(r, k, v)| p[r] * v * p[k])
+                    .sum::<f64>()
+            }
+            (None, Some(augmented)) => augmented
+                .evaluate(&state.positions, &LoadLevel::FULL, None, None)
+                .unwrap_or(f64::NAN),
+            _ => 0.0,
+        }
     }
 
     /// The linearization of step `step` (from 1) of `stepping` from the current state (the
@@ -709,6 +740,12 @@ impl Simulation {
         if let Err(e) = check_stepping(stepping) {
             return Err(fail(e, 0, &self.state, &reports));
         }
+        if self.settings.accept_unconverged && dt.is_none() {
+            let e = SolverError::InvalidProblem(
+                "accept_unconverged applies to implicit Euler only: a quasi-static step must be an equilibrium".into(),
+            );
+            return Err(fail(e, 0, &self.state, &reports));
+        }
         let force_tolerance = match self.force_scale() {
             Ok(scale) => self.settings.force_tolerance * scale,
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
@@ -771,6 +808,14 @@ impl Simulation {
                     Solver::Dual(newton) => {
                         dual::solve(newton, &mut system, &mut x, &mut p, &target, &mut report)
                     }
+                };
+                // A fixed iteration count: the last iterate is the step (`report.converged`
+                // stays false).
+                let solved = match solved {
+                    Err(SolverError::NotConverged { .. }) if self.settings.accept_unconverged => {
+                        Ok(())
+                    }
+                    other => other,
                 };
                 let Some(contact) = &system.model.contact else {
                     break solved;
