@@ -224,7 +224,8 @@ fn a_paper_sweep_that_does_not_match_is_reported() {
             .unwrap()
             .iter()
             .all(|f| f["paper"].is_null()));
-        text
+        // The notes are wrapped to 100 columns: read them as one line.
+        text.split_whitespace().collect::<Vec<_>>().join(" ")
     };
     let other_key = comparison(Some("E"), &["100e3", "200e3"], [&[0.1, 0.05], &[0.1, 0.05]]);
     let text = no_paper(&other_key);
