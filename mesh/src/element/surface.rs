@@ -89,7 +89,7 @@ impl ElementSurface {
     }
 
     /// Volume enclosed by the surface at node positions `x`, by the divergence theorem (see
-    /// [`faces_enclosed_volume`]): on a mesh's own boundary it equals the volume of the
+    /// `faces_enclosed_volume`): on a mesh's own boundary it equals the volume of the
     /// elements ([`super::ElementMesh::rest_volume`] at rest).
     pub fn enclosed_volume(&self, x: &[Vec3]) -> f64 {
         faces_enclosed_volume(self.kind, &self.faces, x)
