@@ -45,15 +45,19 @@ pub fn evaluate(
         .collect()
 }
 
-/// Evaluates the probe `name` of `scene` alone (after every step, for
-/// `output.potential_against`).
-pub fn evaluate_one(scene: &Scene, name: &str, input: &ProbeInput<'_>) -> Result<f64, SceneError> {
+/// Evaluates the probe `name` of `scene` alone on `selections` (built once per run: it runs
+/// after every step for `output.potential_against`).
+pub fn evaluate_one(
+    scene: &Scene,
+    name: &str,
+    input: &ProbeInput<'_>,
+    selections: &Selections<'_>,
+) -> Result<f64, SceneError> {
     let spec = scene.probes.get(name).ok_or_else(|| SceneError::Probe {
         name: name.to_string(),
         message: "the scene has no such probe".into(),
     })?;
-    let selections = Selections::new(input.mesh, &scene.mesh, &scene.selections)?;
-    probe(spec, input, &selections).map_err(|e| e.named(name))
+    probe(spec, input, selections).map_err(|e| e.named(name))
 }
 
 enum ProbeError {

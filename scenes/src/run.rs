@@ -10,6 +10,7 @@ use crate::output::{
 use crate::probes::{self, ProbeInput};
 use crate::result::{ContactRecord, CutRecord, RunResult, StepRecord};
 use crate::scene::Scene;
+use crate::selection::Selections;
 use crate::{problem, SceneError};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use isochor_solvers::{Energies, Frame, IterationReport, Simulation, State, StepReport};
@@ -152,6 +153,14 @@ fn execute(
     let mut last_energies = Energies::default();
     let mut write_error: Option<SceneError> = None;
     let mut last_solver = None;
+    // The selections of the probe tracked per step, built once (not per step).
+    let tracked = match &scene.output.potential_against {
+        Some(name) => Some((
+            name,
+            Selections::new(&mesh, &scene.mesh, &scene.selections)?,
+        )),
+        None => None,
+    };
     let start = Instant::now();
     let outcome = sim.run(stepping, |frame: &Frame<'_>| {
         let mut step = record(
@@ -162,7 +171,7 @@ fn execute(
             frame.energies,
         );
         step.cuts = frame.cuts.iter().map(cut_record).collect();
-        if let Some(name) = &scene.output.potential_against {
+        if let Some((name, selections)) = &tracked {
             let input = ProbeInput {
                 mesh: &mesh,
                 positions: &frame.state.positions,
@@ -172,7 +181,7 @@ fn execute(
                 kappa,
                 history: &history,
             };
-            match probes::evaluate_one(scene, name, &input) {
+            match probes::evaluate_one(scene, name, &input, selections) {
                 Ok(v) => step.tracked_probe = Some(v),
                 Err(e) => write_error = write_error.take().or(Some(e)),
             }
