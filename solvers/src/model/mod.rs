@@ -238,8 +238,7 @@ impl Model {
                     if volume_free {
                         return Err(unsupported(
                             "without zones and with lambda = 0 nothing resists a change of volume (the F-bar \
-                             energy is distortional): the problem is singular; give lambda > 0 or a zone"
-                                .into(),
+                             energy is distortional): the problem is singular; give lambda > 0 or a zone",
                         ));
                     }
                     NonlinearScheme::Minimize
