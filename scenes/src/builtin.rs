@@ -46,6 +46,8 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "resting-block",
         include_str!("../builtin/resting-block.toml"),
     ),
+    ("stretch-cube", include_str!("../builtin/stretch-cube.toml")),
+    ("twist-cube", include_str!("../builtin/twist-cube.toml")),
 ];
 
 /// The TOML text of a built-in scene.
@@ -91,6 +93,7 @@ pub fn reduced(name: &str) -> Option<&'static [&'static str]> {
             &["res=1", "frames=12", "mesh.center=[0.0, 0.0, 0.1002]"]
         }
         "resting-block" => &["res=2", "steps=1"],
+        "stretch-cube" | "twist-cube" => &["res=2", "steps=2"],
         "spine-arm-dynamics" => &["res=1", "frames=3"],
         _ => return None,
     };

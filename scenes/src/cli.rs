@@ -10,6 +10,7 @@
 //! isochor study SCENE --methods A,B,... [--elements tet4,tet10] [--sweep res=1,2,4,8] [--probe NAME]
 //!               [--reference METHOD[/ELEMENT] | --reference-value VALUE [--reference-uncertainty REL]]
 //!               [--max-unknowns N] [--set KEY=VALUE]... [--out DIR]
+//! isochor penalties [--out DIR]                   # Fig. 3 of Sheen et al. 2021: U(J) and U'(J)
 //! ```
 //!
 //! Exit status: 0 on success, 1 on an error (bad scene, key, value or file; nothing is
@@ -18,6 +19,7 @@
 
 use crate::compare::{compare, describe_output, parse_methods, CompareRequest};
 use crate::overrides::Override;
+use crate::penalty_plot::write_penalty_plot;
 use crate::study::{parse_elements, study, ReferenceSpec, StudyRequest};
 use crate::{builtin, resume_run, run_named, RunResult, SceneError, SceneSource};
 use clap::{Parser, Subcommand};
@@ -157,6 +159,13 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         vtu: Option<PathBuf>,
     },
+    /// Plot the volumetric penalties U(J) and their stresses U'(J) over J in (0, 3] with
+    /// lambda = 1 (Fig. 3 of Sheen et al. 2021): penalties.csv and penalties.png.
+    Penalties {
+        /// The folder to write to (default: penalties).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Print a scene as TOML (after a variant and overrides), to copy, edit and run by path.
     Show {
         /// Built-in scene name or path to a TOML scene file.
@@ -197,6 +206,17 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
                     writeln!(stdout, "{name}").map_err(io)?;
                 }
             }
+            Ok(0)
+        }
+        Command::Penalties { out } => {
+            let dir = write_penalty_plot(&out.unwrap_or_else(|| PathBuf::from("penalties")))?;
+            writeln!(
+                stdout,
+                "wrote {} and {}",
+                dir.join("penalties.csv").display(),
+                dir.join("penalties.png").display()
+            )
+            .map_err(io)?;
             Ok(0)
         }
         Command::Show {

@@ -6,7 +6,8 @@
 //! ([`probes`]), bounds checked before allocating ([`limits`]), output writers ([`output`]:
 //! VTU frames, `summary.json`, CSV logs, PNG plots), checkpoints of long runs
 //! ([`checkpoint`]), scene checks before a run ([`check`]), method comparisons ([`compare`])
-//! beside published values ([`paper`]) and the `isochor` command-line program ([`cli`]).
+//! beside published values ([`paper`]), the penalty plot of Fig. 3 of Sheen et al.
+//! ([`penalty_plot`]) and the `isochor` command-line program ([`cli`]).
 //!
 //! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
 //! [`RunResult`].
@@ -25,6 +26,7 @@ pub mod load;
 pub mod output;
 pub mod overrides;
 pub mod paper;
+pub mod penalty_plot;
 pub mod probes;
 pub mod problem;
 pub mod result;

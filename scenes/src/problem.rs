@@ -515,6 +515,7 @@ fn build_zones(
     };
     Ok(match spec.kind {
         ZoneKind::Global => Zones::global(mesh),
+        ZoneKind::None => Zones::from_sets(Vec::new()),
         ZoneKind::KRing => Zones::k_ring_cover(mesh, spec.k.unwrap_or(1))?,
         ZoneKind::Painted => {
             let mut labels = vec![Vec::new(); mesh.num_vertices()];

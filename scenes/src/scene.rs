@@ -49,7 +49,7 @@ pub struct Scene {
     /// Rigid obstacles (frictionless contact with the boundary vertices).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub obstacles: Vec<ObstacleSpec>,
-    /// Zones of the `zonal` method (one global zone if absent).
+    /// Zones of the `zonal` method (one global zone if absent; `kind = "none"` for none).
     #[serde(default)]
     pub zones: Option<ZonesSpec>,
     /// Quasi-static steps or implicit Euler frames.
@@ -611,7 +611,7 @@ pub struct PressureSpec {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ZonesSpec {
-    /// `global`, `k-ring` or `painted`.
+    /// `global`, `k-ring`, `painted` or `none`.
     pub kind: ZoneKind,
     /// Ring size of `k-ring` zones.
     pub k: Option<usize>,
@@ -630,6 +630,10 @@ pub enum ZoneKind {
     KRing,
     /// Zones painted on the surface (labels of the scene).
     Painted,
+    /// No zone: the zonal energy (`lambda U(J; beta)` under the F-bar energy) alone holds the
+    /// volume, "ours without volume constraint" of Table 1 of Sheen et al. 2021. An error
+    /// with `lambda = 0`, which leaves the volume free.
+    None,
 }
 
 /// Quasi-static load stepping or implicit Euler dynamics.
@@ -1163,6 +1167,15 @@ impl Scene {
                     return Err(bad(
                         "zones.paint",
                         "painted zones need a list of surface selections, one per zone".into(),
+                    ))
+                }
+                ZoneKind::None
+                    if self.material.lambda == Some(0.0)
+                        && self.material.zonal_energy != Some(ZonalEnergyName::Standard) =>
+                {
+                    return Err(bad(
+                        "material.lambda",
+                        "with zones.kind = \"none\" and lambda = 0 nothing resists a change of volume: give lambda > 0 or a zone".into(),
                     ))
                 }
                 _ => {}

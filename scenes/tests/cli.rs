@@ -517,3 +517,55 @@ fn frames_carry_von_mises_stress_and_velocity() {
     assert!(vm.iter().all(|s| s.is_finite() && *s >= 0.0) && vm.iter().any(|s| *s > 0.0));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `isochor penalties --out DIR` writes penalties.csv and penalties.png (Fig. 3 of Sheen et
+/// al. 2021), and every CSV value is the penalty function's own at that `J` (written in the
+/// shortest form that reads back exactly, so compared exactly), over `J` in `(0, 3]`.
+#[test]
+fn penalties_writes_the_csv_and_png_of_fig_3() {
+    use isochor_energies::{
+        LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, VolumetricPenalty,
+    };
+    let dir = scratch("penalties");
+    let out = dir.join("fig3");
+    let o = isochor(&["penalties", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "stderr: {}", stderr(&o));
+    let png = std::fs::read(out.join("penalties.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let csv = std::fs::read_to_string(out.join("penalties.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let penalties: [(&str, Box<dyn VolumetricPenalty>); 5] = [
+        ("neo_hookean", Box::new(LogPenalty)),
+        ("stable_neo_hookean", Box::new(QuadraticPenalty)),
+        ("snh2", Box::new(Snh2Penalty)),
+        ("ours_beta_1", Box::new(SheenPenalty::new(1.0).unwrap())),
+        ("ours_beta_6", Box::new(SheenPenalty::new(6.0).unwrap())),
+    ];
+    let mut expected_header = vec!["J".to_string()];
+    for (name, _) in &penalties {
+        expected_header.extend([format!("U_{name}"), format!("dU_{name}")]);
+    }
+    assert_eq!(header, expected_header);
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(rows.len() >= 100, "{} samples", rows.len());
+    let (first, last) = (rows[0][0], rows[rows.len() - 1][0]);
+    assert!(
+        first > 0.0 && first <= 0.01 && last == 3.0,
+        "J from {first} to {last}"
+    );
+    for row in &rows {
+        let j = row[0];
+        for (k, (name, u)) in penalties.iter().enumerate() {
+            assert_eq!(row[1 + 2 * k], u.value(j).unwrap(), "U_{name}({j})");
+            assert_eq!(
+                row[2 + 2 * k],
+                u.first_derivative(j).unwrap(),
+                "dU_{name}({j})"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -12,7 +12,7 @@ use isochor_energies::{
     standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean,
     DistortionalStableNeoHookean, Epidermis, FbarNeoHookean, Hyperelastic, Lame, LogPenalty,
     Matrix12, Matrix9, Mooney, MooneyRivlin, Ogden, OutOfDomain, QuadraticPenalty, SheenPenalty,
-    StableNeoHookean, VolumetricPenalty, Yeoh,
+    Snh2Penalty, StableNeoHookean, VolumetricPenalty, Yeoh,
 };
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
 use isochor_validation::strategies::{
@@ -680,10 +680,17 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // Penalties
 
-/// `U'` against differences of `U` and `U''` against differences of `U'` at `J` (step relative
-/// to `max(|J|, 1)`, floor 1: the scale of `U''(1) = 1`).
+/// `U'` against differences of `U` and `U''` against differences of `U'` at `J` (floor 1: the
+/// scale of `U''(1) = 1`). The step is relative to `max(|J|, 1)`, or to `J` for a barrier
+/// penalty (undefined at `J <= 0`), so that `J - h` stays in its domain as `J -> 0+`: there the
+/// truncation is `(h / J)^2 = 1e-12` and the rounding `eps U / (h U') ~ 2e-9` at `J = 1e-6`.
 fn check_penalty<U: VolumetricPenalty>(u: &U, j: f64) -> Result<(), TestCaseError> {
-    let h = fd::STEP * j.abs().max(1.0);
+    let h = fd::STEP
+        * if u.is_defined_at(-1.0) {
+            j.abs().max(1.0)
+        } else {
+            j
+        };
     let rel = |a: f64, b: f64| (a - b).abs() / a.abs().max(b.abs()).max(1.0);
     let d1 = u.first_derivative(j).unwrap();
     let d1_fd = (u.value(j + h).unwrap() - u.value(j - h).unwrap()) / (2.0 * h);
@@ -712,6 +719,78 @@ penalty_suite! {
     log_penalty_derivatives => |_beta| LogPenalty, j in 1e-3..20.0f64;
     quadratic_penalty_derivatives => |_beta| QuadraticPenalty, j in -20.0..20.0f64;
     sheen_penalty_derivatives => |beta| SheenPenalty::new(beta).unwrap(), j in -20.0..20.0f64;
+    snh2_penalty_derivatives => |_beta| Snh2Penalty, j in -20.0..20.0f64;
+    // The extremes of Fig. 3 of Sheen et al. 2021 and beyond: J -> 0+ and large J.
+    log_penalty_derivatives_near_zero => |_beta| LogPenalty, j in 1e-6..1e-2f64;
+    log_penalty_derivatives_large => |_beta| LogPenalty, j in 20.0..1e3f64;
+    sheen_penalty_derivatives_large => |beta| SheenPenalty::new(beta).unwrap(), j in 20.0..1e3f64;
+    snh2_penalty_derivatives_near_zero => |_beta| Snh2Penalty, j in 1e-6..1e-2f64;
+    snh2_penalty_derivatives_large => |_beta| Snh2Penalty, j in 20.0..1e3f64;
+}
+
+/// Which of the conditions a-e of sec. 5 of Sheen et al. 2021 a penalty meets: a) `U(1) = 0`,
+/// b) `U'(1) = 0`, c) `U''(1) = 1`, d) defined (and finite) for every real `J`, e) `U''(J) >= 0`
+/// wherever defined. d and e are sampled on `J` in `[-10, 10]` every 1e-3 (with 0) and at
+/// `+-1e3`; a to c are exact (the penalties are polynomials or logarithms exact at `J = 1`).
+fn conditions(u: &dyn VolumetricPenalty) -> [bool; 5] {
+    let grid = (-10_000..=10_000)
+        .map(|i| f64::from(i) * 1e-3)
+        .chain([-1e3, 1e3]);
+    let (mut defined, mut convex) = (true, true);
+    for j in grid {
+        match (u.value(j), u.first_derivative(j), u.second_derivative(j)) {
+            (Ok(v), Ok(d1), Ok(d2)) if u.is_defined_at(j) => {
+                defined &= v.is_finite() && d1.is_finite() && d2.is_finite();
+                convex &= d2 >= 0.0;
+            }
+            _ => defined = false,
+        }
+    }
+    [
+        u.value(1.0) == Ok(0.0),
+        u.first_derivative(1.0) == Ok(0.0),
+        u.second_derivative(1.0) == Ok(1.0),
+        defined,
+        convex,
+    ]
+}
+
+/// The conditions a-e (sec. 5 of Sheen et al. 2021) for the penalties of their Fig. 3.
+/// The paper's own claims: `U(J; beta)` meets all five for every `beta >= 0` (after eq. 15),
+/// so does Stable neo-Hookean `(J - 1)^2 / 2 = U(J; 0)`, and the neo-Hookean `(log J)^2 / 2` is
+/// undefined for `J <= 0` (Fig. 3: fails d). What the paper does not state, by analysis: the
+/// neo-Hookean `U'' = (1 - log J) / J^2 < 0` for `J > e` (fails e); SNH2 meets a-d but
+/// `U'' = 1 - 3d + 3d^2 / 2 < 0` for `d = J - 1` in `(1 - 1/sqrt 3, 1 + 1/sqrt 3)` (fails e).
+#[test]
+fn penalty_conditions_of_sheen_et_al() {
+    let sheen = |beta| SheenPenalty::new(beta).unwrap();
+    let cases: [(&str, &dyn VolumetricPenalty, [bool; 5]); 6] = [
+        ("neo-Hookean", &LogPenalty, [true, true, true, false, false]),
+        ("Stable neo-Hookean", &QuadraticPenalty, [true; 5]),
+        ("SNH2", &Snh2Penalty, [true, true, true, true, false]),
+        ("U(J; 0)", &sheen(0.0), [true; 5]),
+        ("U(J; 1)", &sheen(1.0), [true; 5]),
+        ("U(J; 6)", &sheen(6.0), [true; 5]),
+    ];
+    for (name, u, expected) in cases {
+        assert_eq!(conditions(u), expected, "{name}: conditions a-e");
+    }
+}
+
+/// SNH2 is non-convex exactly on `J` in `(2 - 1/sqrt 3, 2 + 1/sqrt 3)` (the roots of its `U''`),
+/// and its `U` returns to 0 at `J = 3` where the truncated logarithm vanishes: it stops
+/// penalizing stretch, unlike `U(J; beta)`.
+#[test]
+fn snh2_is_non_convex_between_the_roots_of_its_second_derivative() {
+    let r = 1.0 / 3f64.sqrt();
+    for (j, negative) in [(2.0 - r - 1e-6, false), (2.0 - r + 1e-6, true), (2.0, true)]
+        .into_iter()
+        .chain([(2.0 + r - 1e-6, true), (2.0 + r + 1e-6, false)])
+    {
+        let d2 = Snh2Penalty.second_derivative(j).unwrap();
+        assert_eq!(d2 < 0.0, negative, "U''({j}) = {d2}");
+    }
+    assert_eq!(Snh2Penalty.value(3.0).unwrap(), 0.0);
 }
 
 proptest! {

@@ -4,7 +4,9 @@
 mod log;
 mod quadratic;
 mod sheen;
+mod snh2;
 
 pub use log::LogPenalty;
 pub use quadratic::QuadraticPenalty;
 pub use sheen::SheenPenalty;
+pub use snh2::Snh2Penalty;

@@ -5,7 +5,7 @@ use crate::SceneError;
 use std::path::{Path, PathBuf};
 
 /// Files that mark a folder as an isochor output folder (so it may be replaced).
-const MARKERS: [&str; 3] = ["summary.json", "compare.csv", "study.csv"];
+const MARKERS: [&str; 4] = ["summary.json", "compare.csv", "study.csv", "penalties.csv"];
 
 /// A temporary folder `.NAME.tmp` next to the destination; [`OutputDir::commit`] renames it
 /// to the destination, and dropping it uncommitted removes it, unless it holds a checkpoint

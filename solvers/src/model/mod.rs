@@ -229,10 +229,25 @@ impl Model {
             }
             Method::Zonal => {
                 let zones = zones.unwrap_or_else(|| Zones::global(mesh.corners()));
-                constraints = Some(Arc::new(ZonalConstraints::on_elements(
-                    &mesh, rule, &zones,
-                )?));
-                NonlinearScheme::SaddleSchur
+                if zones.is_empty() {
+                    // "Ours without volume constraint" (Table 1 of Sheen et al. 2021): the
+                    // F-bar energy with lambda U(J; beta) alone, which must then hold volume.
+                    let volume_free = regions.materials().iter().any(|m| {
+                        m.zonal_energy == ZonalEnergy::Constrained && m.zonal_lambda == 0.0
+                    });
+                    if volume_free {
+                        return Err(unsupported(
+                            "without zones and with lambda = 0 nothing resists a change of volume (the F-bar \
+                             energy is distortional): the problem is singular; give lambda > 0 or a zone",
+                        ));
+                    }
+                    NonlinearScheme::Minimize
+                } else {
+                    constraints = Some(Arc::new(ZonalConstraints::on_elements(
+                        &mesh, rule, &zones,
+                    )?));
+                    NonlinearScheme::SaddleSchur
+                }
             }
         };
 

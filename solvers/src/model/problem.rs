@@ -532,7 +532,8 @@ pub struct Problem {
     /// Parts of the body with their own material (a stiff strain-limiting layer under a soft
     /// body): each element belongs to at most one region.
     pub regions: Vec<Region>,
-    /// Zones for the `zonal` method (defaults to one global zone).
+    /// Zones for the `zonal` method (defaults to one global zone; none: no volume constraint,
+    /// the energy's `lambda U(J; beta)` alone).
     pub zones: Option<Zones>,
     /// Dirichlet conditions.
     pub dirichlet: Vec<Dirichlet>,
