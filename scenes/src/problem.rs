@@ -4,13 +4,14 @@
 use crate::checks;
 use crate::scene::{
     CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, ModelName, MotionSpec, ObstacleSpec,
-    Scene, SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
+    OrderingName, Scene, SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
 };
 use crate::selection::Selections;
 use crate::SceneError;
 use isochor_energies::ParameterError;
 use isochor_mesh::element::TetElement;
 use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3, Zones};
+use isochor_solvers::linear::Ordering;
 use isochor_solvers::{
     Adaptive, Curve, Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, MaterialModel,
     Method, Motion, Obstacle, Problem, Region, ScheduledLoad, Settings, Shape, StepControl,
@@ -584,6 +585,13 @@ pub fn settings(spec: &SolverSpec) -> Settings {
     }
     if let Some(v) = spec.max_contact_iterations {
         s.max_contact_iterations = v;
+    }
+    if let Some(v) = spec.ordering {
+        s.ordering = match v {
+            OrderingName::Amd => Ordering::Amd,
+            OrderingName::NestedDissection => Ordering::NestedDissection,
+            OrderingName::Auto => Ordering::Auto,
+        };
     }
     let iterative = spec.linear == Some(LinearName::Iterative)
         || (spec.linear.is_none()

@@ -690,6 +690,9 @@ pub struct SolverSpec {
     pub linear_tolerance: Option<f64>,
     /// Iteration limit of the iterative linear solver.
     pub linear_max_iterations: Option<usize>,
+    /// Fill-reducing ordering of the direct factorizations: `amd`, `nested-dissection`
+    /// (METIS) or `auto` (the default: AMD on small systems, nested dissection on large).
+    pub ordering: Option<OrderingName>,
     /// Largest accepted penetration into an obstacle, relative to the mesh's bounding-box
     /// diagonal (default 1e-6).
     pub contact_tolerance: Option<f64>,
@@ -709,6 +712,18 @@ pub enum LinearName {
     Direct,
     /// CG or MINRES.
     Iterative,
+}
+
+/// Fill-reducing ordering choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OrderingName {
+    /// Approximate minimum degree.
+    Amd,
+    /// Nested dissection (METIS).
+    NestedDissection,
+    /// By size (see `isochor_solvers::linear::Ordering::AUTO_THRESHOLD`).
+    Auto,
 }
 
 /// A named scalar measured on the final state.

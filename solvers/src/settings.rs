@@ -1,5 +1,7 @@
 //! Solver settings: Newton limits, tolerances and the linear solver choice.
 
+use crate::linear::Ordering;
+
 /// How linear systems are solved.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum LinearSolver {
@@ -38,6 +40,8 @@ pub struct Settings {
     pub project_hessians: bool,
     /// Linear solver.
     pub linear: LinearSolver,
+    /// Fill-reducing ordering of the direct factorizations (`K` and the KKT matrix).
+    pub ordering: Ordering,
     /// Largest penetration of a vertex into an obstacle accepted at convergence, relative to
     /// the diagonal of the mesh's rest bounding box.
     pub contact_tolerance: f64,
@@ -62,6 +66,7 @@ impl Default for Settings {
             dual_conjugate: true,
             project_hessians: false,
             linear: LinearSolver::Direct,
+            ordering: Ordering::Auto,
             contact_tolerance: 1e-6,
             max_contact_iterations: 30,
             accept_unconverged: false,

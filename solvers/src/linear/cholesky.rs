@@ -2,11 +2,15 @@
 //! eq. 37): the fill-reducing ordering and symbolic factorization are computed once per
 //! pattern and reused by every numeric refactorization.
 
+use super::fill_reducing::fill_reducing;
 use super::operator::{norm, LinearOperator, SymmetricLower};
 use super::pattern::{copy_structure, entry_pairs, same_structure};
-use super::{Factorization, LinearError, ShiftSchedule, SolveReport, SparsityPattern, Triangle};
+use super::{
+    Factorization, LinearError, Ordering, ShiftSchedule, SolveReport, SparsityPattern, Triangle,
+};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
@@ -31,8 +35,17 @@ pub struct CholeskySolver {
 }
 
 impl CholeskySolver {
-    /// Symbolic analysis (AMD ordering, elimination tree, supernodes) of the pattern of `K`.
+    /// Symbolic analysis (fill-reducing ordering chosen by size, elimination tree,
+    /// supernodes) of the pattern of `K`.
     pub fn new(k: SymbolicSparseColMatRef<'_, usize>) -> Result<Self, LinearError> {
+        Self::with_ordering(k, Ordering::default())
+    }
+
+    /// Symbolic analysis of the pattern of `K` under the fill-reducing `ordering`.
+    pub fn with_ordering(
+        k: SymbolicSparseColMatRef<'_, usize>,
+        ordering: Ordering,
+    ) -> Result<Self, LinearError> {
         let start = Instant::now();
         let n = k.nrows();
         if k.ncols() != n {
@@ -45,16 +58,27 @@ impl CholeskySolver {
         let mut pairs = entry_pairs(k, "K (uncompressed storage)")?;
         pairs.extend((0..n).map(|i| (i, i)));
         let lower = SparsityPattern::new(n, n, &pairs, Triangle::Lower)?;
+        let ordering = ordering.resolve(n);
+        // AMD is faer's built-in (the same algorithm and control as `Ordering::Amd`
+        // elsewhere); other orderings are handed in as a permutation.
+        let permutation = match ordering {
+            Ordering::Amd => None,
+            _ => Some(fill_reducing(lower.symbolic(), ordering)?),
+        };
         let symbolic = factorize_symbolic_cholesky(
             lower.symbolic(),
             Side::Lower,
-            SymmetricOrdering::Amd,
+            match &permutation {
+                Some((fwd, inv)) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, inv, n)),
+                None => SymmetricOrdering::Amd,
+            },
             Default::default(),
         )?;
         let report = SolveReport {
             factorization: Factorization::Cholesky,
             symbolic_time: start.elapsed(),
             factor_nnz: symbolic.len_val(),
+            ordering,
             residual: f64::NAN,
             ..Default::default()
         };

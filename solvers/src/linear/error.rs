@@ -138,6 +138,14 @@ pub enum LinearError {
     /// `solve` was called before a successful numeric factorization.
     #[error("no numeric factorization available; call factorize first")]
     NotFactorized,
+    /// The fill-reducing ordering could not be computed.
+    #[error("{algorithm} ordering failed: {message}")]
+    Ordering {
+        /// Which ordering.
+        algorithm: &'static str,
+        /// What went wrong.
+        message: String,
+    },
     /// An error reported by faer (allocation, index overflow, ...).
     #[error("faer: {0}")]
     Faer(String),

@@ -10,7 +10,7 @@
 //!
 //! Method: symmetric diagonal scaling `S A S` (the Jacobi scales of
 //! [`super::saddle_point_diagonal`], so that pivot thresholds are scale free), an
-//! anchored fill-reducing order (see `ordering.rs`), and a supernodal `LDL^T` without
+//! anchored fill-reducing order ([`KktOptions::ordering`], see `ordering.rs`), and a supernodal `LDL^T` without
 //! pivoting whose symbolic factorization is computed once and reused.
 //!
 //! Pivots of magnitude below `epsilon` are replaced by `+-delta` during the
@@ -36,7 +36,8 @@ use super::operator::{norm, LinearOperator, SymmetricLower};
 use super::ordering::anchored_ordering;
 use super::pattern::{copy_structure, entry_pairs, same_structure};
 use super::{
-    Factorization, Inertia, LinearError, ShiftSchedule, SolveReport, SparsityPattern, Triangle,
+    Factorization, Inertia, LinearError, Ordering, ShiftSchedule, SolveReport, SparsityPattern,
+    Triangle,
 };
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
@@ -95,6 +96,9 @@ pub struct KktOptions {
     pub residual_tolerance: f64,
     /// Whether to fall back to sparse `LU` when `LDL^T` breaks down or is inaccurate.
     pub lu_fallback: bool,
+    /// Fill-reducing ordering of the compressed graph (constraints merged into their
+    /// anchors) before the anchored expansion.
+    pub ordering: Ordering,
 }
 
 impl Default for KktOptions {
@@ -106,6 +110,7 @@ impl Default for KktOptions {
             refinement_tolerance: 1e-10,
             residual_tolerance: 1e-8,
             lu_fallback: true,
+            ordering: Ordering::default(),
         }
     }
 }
@@ -179,7 +184,8 @@ impl KktSolver {
                 });
             }
         }
-        let fwd = anchored_ordering(k, g, anchors)?;
+        let ordering = options.ordering.resolve(n);
+        let fwd = anchored_ordering(k, g, anchors, ordering)?;
         let mut inv = vec![0usize; n + m];
         fwd.iter()
             .enumerate()
@@ -230,6 +236,7 @@ impl KktSolver {
         let report = SolveReport {
             symbolic_time: start.elapsed(),
             factor_nnz: symbolic.len_val(),
+            ordering,
             residual: f64::NAN,
             ..Default::default()
         };

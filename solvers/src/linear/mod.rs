@@ -1,6 +1,7 @@
 //! Sparse linear algebra for the Newton solvers: fixed sparsity patterns refilled every
 //! iteration, sparse Cholesky for SPD systems, supernodal `LDL^T` with inertia check
-//! for the saddle-point systems of eq. 21/24 (Francu et al. 2021), and matrix-free
+//! for the saddle-point systems of eq. 21/24 (Francu et al. 2021), both under a
+//! fill-reducing [`Ordering`] (AMD or METIS nested dissection), and matrix-free
 //! CG / MINRES with diagonal preconditioning (sec. 8).
 //!
 //! Symmetric matrices are given with both triangles (as the element kernels emit them)
@@ -23,9 +24,11 @@
 
 mod cholesky;
 mod error;
+mod fill_reducing;
 mod iterative;
 mod jacobi;
 mod kkt;
+mod nested_dissection;
 mod operator;
 mod ordering;
 mod pattern;
@@ -34,6 +37,7 @@ mod shift;
 
 pub use cholesky::CholeskySolver;
 pub use error::LinearError;
+pub use fill_reducing::Ordering;
 pub use iterative::{cg, minres, IterativeOptions, IterativeReport};
 pub use jacobi::{diagonal, saddle_point_diagonal, Jacobi};
 pub use kkt::{KktOptions, KktSolver, PivotRegularization};

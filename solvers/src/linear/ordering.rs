@@ -5,20 +5,20 @@
 //! formed after the displacement it couples to has been eliminated. Constraints without
 //! an anchor (dense zonal rows) go last.
 //!
-//! The order is found by AMD on the compressed graph whose vertices are the `n` DOFs,
-//! each anchored constraint merged into its anchor, and then expanded.
+//! The order is found by a fill-reducing ordering (AMD or nested dissection, see
+//! [`Ordering`]) of the compressed graph whose vertices are the `n` DOFs, each anchored
+//! constraint merged into its anchor, and then expanded.
 //!
 //! A constraint's pivot is `-g_E^T S_E^-1 g_E` over the DOFs `E` of its row eliminated
 //! before it. The entries of a nodal volume constraint on its own node cancel for
 //! interior nodes (moving the centre of a closed star does not change its volume), so
-//! the pivot is exactly zero when AMD eliminates the node before all its neighbours.
+//! the pivot is exactly zero when the ordering eliminates the node before all its neighbours.
 //! Such a constraint is therefore delayed until the DOFs of one other node of its row
 //! are eliminated; "nodes" are the supervariables of `G` (DOFs whose columns of `G`
 //! have the same rows), so nothing about the mesh is assumed.
 
-use super::{LinearError, SparsityPattern, Triangle};
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::amd;
+use super::fill_reducing::fill_reducing;
+use super::{LinearError, Ordering, SparsityPattern, Triangle};
 use faer::sparse::SymbolicSparseColMatRef;
 use std::collections::HashMap;
 
@@ -28,6 +28,7 @@ pub(crate) fn anchored_ordering(
     k: SymbolicSparseColMatRef<'_, usize>,
     g: SymbolicSparseColMatRef<'_, usize>,
     anchors: &[Option<usize>],
+    ordering: Ordering,
 ) -> Result<Vec<usize>, LinearError> {
     let n = k.nrows();
     let m = g.nrows();
@@ -59,17 +60,7 @@ pub(crate) fn anchored_ordering(
         }
     }
     let graph = SparsityPattern::new(n, n, &pairs, Triangle::Full)?;
-    let mut fwd = vec![0usize; n];
-    let mut inv = vec![0usize; n];
-    let req = amd::order_maybe_unsorted_scratch::<usize>(n, graph.nnz());
-    let mut mem = MemBuffer::try_new(req).map_err(|_| LinearError::Faer("out of memory".into()))?;
-    amd::order_maybe_unsorted(
-        &mut fwd,
-        &mut inv,
-        graph.symbolic(),
-        amd::Control::default(),
-        MemStack::new(&mut mem),
-    )?;
+    let (fwd, inv) = fill_reducing(graph.symbolic(), ordering)?;
     // Expand: each DOF followed by the constraints placed after it, free rows last.
     let supervariable = supervariables(g);
     let mut row_dofs: Vec<Vec<usize>> = vec![Vec::new(); m];
@@ -122,7 +113,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn constraints_follow_their_anchors_and_free_rows_go_last() {
+    fn constraints_follow_their_anchors_and_free_rows_go_last_under_both_orderings() {
         // K: a path 0-1-2-3; G: row 0 on DOFs {0, 1}, row 1 on {2, 3}, row 2 on all.
         let kp = [
             (0, 0),
@@ -148,24 +139,26 @@ mod tests {
             (2, 3),
         ];
         let g = SparsityPattern::new(3, 4, &gp, Triangle::Full).unwrap();
-        let order =
-            anchored_ordering(k.symbolic(), g.symbolic(), &[Some(1), Some(3), None]).unwrap();
-        let pos = |v: usize| order.iter().position(|&x| x == v).unwrap();
-        assert_eq!(order.len(), 7);
-        assert_eq!(pos(4), pos(1) + 1);
-        assert_eq!(pos(5), pos(3) + 1);
-        assert_eq!(pos(6), 6);
-        let mut sorted = order.clone();
-        sorted.sort_unstable();
-        assert_eq!(sorted, (0..7).collect::<Vec<_>>());
-        assert!(matches!(
-            anchored_ordering(k.symbolic(), g.symbolic(), &[Some(9), None, None]),
-            Err(LinearError::BadAnchor { dof: 9, .. })
-        ));
+        for ordering in [Ordering::Amd, Ordering::NestedDissection] {
+            let anchors = [Some(1), Some(3), None];
+            let order = anchored_ordering(k.symbolic(), g.symbolic(), &anchors, ordering).unwrap();
+            let pos = |v: usize| order.iter().position(|&x| x == v).unwrap();
+            assert_eq!(order.len(), 7);
+            assert_eq!(pos(4), pos(1) + 1, "{ordering:?}");
+            assert_eq!(pos(5), pos(3) + 1, "{ordering:?}");
+            assert_eq!(pos(6), 6, "{ordering:?}");
+            let mut sorted = order.clone();
+            sorted.sort_unstable();
+            assert_eq!(sorted, (0..7).collect::<Vec<_>>());
+            assert!(matches!(
+                anchored_ordering(k.symbolic(), g.symbolic(), &[Some(9), None, None], ordering),
+                Err(LinearError::BadAnchor { dof: 9, .. })
+            ));
+        }
     }
 
     #[test]
-    fn a_constraint_waits_for_another_node_of_its_row() {
+    fn a_constraint_waits_for_another_node_of_its_row_under_both_orderings() {
         // DOFs {0, 1} form one node (same G columns), {2, 3} another.
         let kp = [
             (0, 0),
@@ -182,9 +175,15 @@ mod tests {
         let k = SparsityPattern::new(4, 4, &kp, Triangle::Full).unwrap();
         let gp = [(0, 0), (0, 1), (0, 2), (0, 3), (1, 2), (1, 3)];
         let g = SparsityPattern::new(2, 4, &gp, Triangle::Full).unwrap();
-        let order = anchored_ordering(k.symbolic(), g.symbolic(), &[Some(1), Some(3)]).unwrap();
-        let pos = |v: usize| order.iter().position(|&x| x == v).unwrap();
-        assert!((0..4).all(|d| pos(4) > pos(d)), "{order:?}");
-        assert!(pos(5) > pos(2) && pos(5) > pos(3), "{order:?}");
+        for ordering in [Ordering::Amd, Ordering::NestedDissection] {
+            let anchors = [Some(1), Some(3)];
+            let order = anchored_ordering(k.symbolic(), g.symbolic(), &anchors, ordering).unwrap();
+            let pos = |v: usize| order.iter().position(|&x| x == v).unwrap();
+            assert!((0..4).all(|d| pos(4) > pos(d)), "{ordering:?}: {order:?}");
+            assert!(
+                pos(5) > pos(2) && pos(5) > pos(3),
+                "{ordering:?}: {order:?}"
+            );
+        }
     }
 }

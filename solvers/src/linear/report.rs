@@ -1,5 +1,6 @@
 //! Where the time of a linear solve went, and how trustworthy its result is.
 
+use super::Ordering;
 use std::time::Duration;
 
 /// Signs of the pivots `D` of an `LDL^T` factorization (Sylvester's law of inertia:
@@ -46,6 +47,8 @@ pub struct SolveReport {
     pub factorizations: usize,
     /// Stored entries of the `LL^T` or `LDL^T` factor `L` (from the symbolic analysis).
     pub factor_nnz: usize,
+    /// The fill-reducing ordering the symbolic analysis used (`Auto` resolved by size).
+    pub ordering: Ordering,
     /// Shift added to the diagonal of `K` (absolute).
     pub shift: f64,
     /// Pivots replaced by the regularization of the `LDL^T` (0 if none).

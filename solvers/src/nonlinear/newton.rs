@@ -26,8 +26,11 @@ pub struct Newton {
 impl Newton {
     /// Symbolic analysis of the system's Hessian pattern (once per run).
     pub fn new(system: &System<'_>) -> Result<Self, SolverError> {
-        let cholesky = CholeskySolver::new(system.hessian.pattern().symbolic())
-            .map_err(|e| SolverError::Linear(e.to_string()))?;
+        let cholesky = CholeskySolver::with_ordering(
+            system.hessian.pattern().symbolic(),
+            system.settings.ordering,
+        )
+        .map_err(|e| SolverError::Linear(e.to_string()))?;
         Ok(Newton { cholesky })
     }
 
@@ -73,6 +76,7 @@ impl Newton {
         let error = |e: crate::linear::LinearError| SolverError::Linear(e.to_string());
         match linear {
             LinearSolver::Direct => {
+                report.factor_nnz = self.cholesky.report().factor_nnz;
                 let start = Instant::now();
                 let shift = self
                     .cholesky

@@ -139,8 +139,11 @@ impl SaddleNewton {
                 }))
             }
             (_, NonlinearScheme::SaddleSchur) => Linear::Schur(Box::new(Schur {
-                cholesky: CholeskySolver::new(system.hessian.pattern().symbolic())
-                    .map_err(linear_error)?,
+                cholesky: CholeskySolver::with_ordering(
+                    system.hessian.pattern().symbolic(),
+                    system.settings.ordering,
+                )
+                .map_err(linear_error)?,
                 rows: DMatrix::zeros(0, 0),
                 z: DMatrix::zeros(0, 0),
                 schur: DMatrix::zeros(0, 0),
@@ -160,7 +163,10 @@ impl SaddleNewton {
                         jacobian.pattern().symbolic(),
                         compliance.as_ref().map(|c| c.symbolic()),
                         &anchors,
-                        KktOptions::default(),
+                        KktOptions {
+                            ordering: system.settings.ordering,
+                            ..KktOptions::default()
+                        },
                     )
                     .map_err(linear_error)?,
                 ))
@@ -411,15 +417,18 @@ impl SaddleNewton {
     ) -> Result<f64, SolverError> {
         let start = Instant::now();
         let shift = match &mut self.linear {
-            Linear::Direct(kkt) => kkt
-                .factorize_with_shifts(
+            Linear::Direct(kkt) => {
+                report.factor_nnz = kkt.report().factor_nnz;
+                kkt.factorize_with_shifts(
                     k.as_ref(),
                     g.as_ref(),
                     self.compliance.as_ref().map(|c| c.as_ref()),
                     &ShiftSchedule::default(),
                 )
-                .map_err(linear_error)?,
+                .map_err(linear_error)?
+            }
             Linear::Schur(schur) => {
+                report.factor_nnz = schur.cholesky.report().factor_nnz;
                 let shift = schur
                     .cholesky
                     .factorize_with_shifts(k.as_ref(), &ShiftSchedule::default())

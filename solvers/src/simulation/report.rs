@@ -63,6 +63,9 @@ pub struct StepReport {
     pub converged: bool,
     /// Where the time went.
     pub timings: Timings,
+    /// Stored entries of the direct factorization's factor `L` (its memory is 8 bytes
+    /// each; 0 for the iterative linear solvers): the fill its ordering left.
+    pub factor_nnz: usize,
     /// Wall time of the whole step.
     pub wall_time: Duration,
     /// Contact multiplier updates (outer augmented-Lagrangian iterations; 0 without obstacles).
