@@ -54,6 +54,7 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("linear", "solver.linear"),
     ("linear_tolerance", "solver.linear_tolerance"),
     ("linear_max_iterations", "solver.linear_max_iterations"),
+    ("linear_preconditioner", "solver.linear_preconditioner"),
     ("zones", "zones.kind"),
     ("k", "zones.k"),
     ("every", "output.every"),

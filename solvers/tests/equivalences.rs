@@ -147,10 +147,11 @@ fn iterative_linear_solvers_match_direct_ones() {
         let rest = problem.mesh.nodes().to_vec();
         let direct = solve(problem.clone());
         let settings = Settings {
-            linear: LinearSolver::Iterative {
+            linear: LinearSolver::Iterative(isochor_solvers::IterativeSettings {
                 tolerance: 1e-10,
                 max_iterations: 20_000,
-            },
+                preconditioner: isochor_solvers::PreconditionerKind::Jacobi,
+            }),
             ..Settings::default()
         };
         let mut sim = Simulation::new(problem, settings).unwrap();
