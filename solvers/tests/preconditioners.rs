@@ -140,7 +140,11 @@ fn incomplete_cholesky_drops_fill_and_beats_jacobi() {
 fn incomplete_cholesky_shifts_on_breakdown() {
     let a = symmetric(2, &[(0, 0, 1.0), (1, 0, 2.0), (1, 1, 1.0)]);
     let ic = IncompleteCholesky::new(a.as_ref()).unwrap();
-    assert!(ic.shift() > 1.0 && ic.shift() <= 2.0, "shift {}", ic.shift());
+    assert!(
+        ic.shift() > 1.0 && ic.shift() <= 2.0,
+        "shift {}",
+        ic.shift()
+    );
     let mut z = [0.0; 2];
     for r in [[1.0, 0.0], [0.0, 1.0], [1.0, -1.0], [1.0, 1.0]] {
         ic.apply(&r, &mut z);

@@ -90,7 +90,11 @@ impl IncompleteCholesky {
                 factor.shift = shift;
                 return Ok(factor);
             }
-            shift = if shift == 0.0 { FIRST_SHIFT } else { 2.0 * shift };
+            shift = if shift == 0.0 {
+                FIRST_SHIFT
+            } else {
+                2.0 * shift
+            };
         }
         Err(LinearError::RegularizationFailed {
             attempts: SHIFT_RETRIES + 1,

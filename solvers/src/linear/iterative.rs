@@ -36,7 +36,12 @@ pub struct IterativeReport {
     pub time: Duration,
 }
 
-fn check_dims(a: &dyn LinearOperator, m: &dyn Preconditioner, b: &[f64], x: &[f64]) -> Result<(), LinearError> {
+fn check_dims(
+    a: &dyn LinearOperator,
+    m: &dyn Preconditioner,
+    b: &[f64],
+    x: &[f64],
+) -> Result<(), LinearError> {
     let n = a.nrows();
     if a.ncols() != n {
         return Err(LinearError::NotSquare {

@@ -83,8 +83,6 @@ impl Jacobi {
             inv_diag: vec![1.0; n],
         }
     }
-
-
 }
 
 impl Preconditioner for Jacobi {

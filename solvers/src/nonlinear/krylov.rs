@@ -2,8 +2,8 @@
 //! saddle-point system, with the preconditioners the settings name.
 
 use crate::linear::{
-    cg, diagonal, minres, BlockDiagonal, IncompleteCholesky, IterativeOptions, Jacobi,
-    LinearError, LinearOperator, Preconditioner, SaddlePoint, SymmetricLower,
+    cg, diagonal, minres, BlockDiagonal, IncompleteCholesky, IterativeOptions, Jacobi, LinearError,
+    LinearOperator, Preconditioner, SaddlePoint, SymmetricLower,
 };
 use crate::{IterativeSettings, PreconditionerKind};
 use faer::sparse::SparseColMatRef;
@@ -33,7 +33,13 @@ pub fn solve_stiffness(
         tolerance,
         max_iterations: settings.max_iterations,
     };
-    let report = cg(&SymmetricLower(k), preconditioner.as_ref(), b, &mut x, options)?;
+    let report = cg(
+        &SymmetricLower(k),
+        preconditioner.as_ref(),
+        b,
+        &mut x,
+        options,
+    )?;
     Ok((x, report.iterations))
 }
 

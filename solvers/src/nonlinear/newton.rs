@@ -41,7 +41,10 @@ impl Newton {
         let pattern = system.hessian.pattern();
         let iterative = match system.model.scheme {
             NonlinearScheme::Dual => None,
-            _ => system.settings.linear.iterative_for(pattern.symbolic().nrows()),
+            _ => system
+                .settings
+                .linear
+                .iterative_for(pattern.symbolic().nrows()),
         };
         let linear = match iterative {
             Some(settings) => Linear::Iterative(settings, Forcing::new(settings.tolerance)),
