@@ -16,11 +16,12 @@ pub enum LinearSolver {
 }
 
 /// Systems of at most this many unknowns (free DOFs plus constraint rows) are solved
-/// directly by [`LinearSolver::Auto`]. Measured on the cantilever at nu = 0.4999 (release,
-/// a shared 2-core machine, 2026-11-30): the direct solver is faster at every size measured
-/// (up to res 12, 24k unknowns for `standard`, 33k for `mixed-p1`), so the switch sits past
-/// the largest measured size, where the direct factorization's memory starts to dominate.
-pub const AUTO_DIRECT_UNKNOWNS: usize = 200_000;
+/// directly by [`LinearSolver::Auto`]. On the cantilever at nu = 0.4999 the direct solver was
+/// faster than the iterative one at every size measured (README, "The iterative linear
+/// path"), so the switch sits where the direct factor's memory becomes the limit: the scenes'
+/// memory model (`410 B * n^(4/3)` of fill) reaches 4 GiB, a sixth of a 24 GiB machine, at
+/// about 180k unknowns.
+pub const AUTO_DIRECT_UNKNOWNS: usize = 180_000;
 
 impl LinearSolver {
     /// The iterative settings to use for a system of `unknowns` unknowns, or `None` for
