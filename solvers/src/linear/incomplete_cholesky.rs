@@ -129,9 +129,7 @@ impl IncompleteCholesky {
             }
             let ljj = pivot.sqrt();
             l[cp[j]] = ljj;
-            for p in cp[j] + 1..cp[j + 1] {
-                l[p] /= ljj;
-            }
+            l[cp[j] + 1..cp[j + 1]].iter_mut().for_each(|v| *v /= ljj);
             // Column k > j loses L_ik L_kj for every row i >= k of column j that column k
             // stores (both lists ascend: a merge; fill outside the pattern is dropped).
             for p in cp[j] + 1..cp[j + 1] {
