@@ -12,7 +12,7 @@
 use crate::scene::{LinearName, MeshSpec, Scene, SteppingSpec, ZoneKind};
 use crate::SceneError;
 use isochor_mesh::element::TetElement;
-use isochor_solvers::Method;
+use isochor_solvers::{Method, AUTO_DIRECT_UNKNOWNS};
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 
@@ -81,9 +81,15 @@ impl Footprint {
             Method::Standard | Method::Condensed | Method::Dual => 0.0,
         };
         let unknowns = 3.0 * nodes + pressures;
-        let fill = match scene.solver.linear {
-            Some(LinearName::Iterative) => 0.0,
-            _ => FILL_BYTES_PER_UNKNOWN * unknowns.cbrt(),
+        let iterative = match scene.solver.linear_choice() {
+            LinearName::Iterative => true,
+            LinearName::Auto => unknowns > AUTO_DIRECT_UNKNOWNS as f64,
+            LinearName::Direct => false,
+        };
+        let fill = if iterative {
+            0.0
+        } else {
+            FILL_BYTES_PER_UNKNOWN * unknowns.cbrt()
         };
         let mesh_bytes = BASE_BYTES + density(method) * unknowns * (BYTES_PER_UNKNOWN + fill);
         Some(Footprint {

@@ -4,7 +4,7 @@
 use crate::checks;
 use crate::scene::{
     CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, ModelName, MotionSpec, ObstacleSpec,
-    OrderingName, Scene, SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
+    OrderingName, PreconditionerName, Scene, SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
 };
 use crate::selection::Selections;
 use crate::SceneError;
@@ -13,9 +13,9 @@ use isochor_mesh::element::TetElement;
 use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3, Zones};
 use isochor_solvers::linear::Ordering;
 use isochor_solvers::{
-    Adaptive, Curve, Dirichlet, Epidermis, Kappa, LinearSolver, Load, Material, MaterialModel,
-    Method, Motion, Obstacle, Problem, Region, ScheduledLoad, Settings, Shape, StepControl,
-    Stepping, ZonalEnergy,
+    Adaptive, Curve, Dirichlet, Epidermis, IterativeSettings, Kappa, LinearSolver, Load, Material,
+    MaterialModel, Method, Motion, Obstacle, PreconditionerKind, Problem, Region, ScheduledLoad,
+    Settings, Shape, StepControl, Stepping, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -593,14 +593,20 @@ pub fn settings(spec: &SolverSpec) -> Settings {
             OrderingName::Auto => Ordering::Auto,
         };
     }
-    let iterative = spec.linear == Some(LinearName::Iterative)
-        || (spec.linear.is_none()
-            && (spec.linear_tolerance.is_some() || spec.linear_max_iterations.is_some()));
-    if iterative {
-        s.linear = LinearSolver::Iterative {
-            tolerance: spec.linear_tolerance.unwrap_or(1e-8),
-            max_iterations: spec.linear_max_iterations.unwrap_or(1000),
-        };
-    }
+    let iterative = IterativeSettings {
+        tolerance: spec.linear_tolerance.unwrap_or(1e-8),
+        max_iterations: spec.linear_max_iterations.unwrap_or(1000),
+        preconditioner: match spec.linear_preconditioner {
+            Some(PreconditionerName::Jacobi) => PreconditionerKind::Jacobi,
+            Some(PreconditionerName::IncompleteCholesky) | None => {
+                PreconditionerKind::IncompleteCholesky
+            }
+        },
+    };
+    s.linear = match spec.linear_choice() {
+        LinearName::Direct => LinearSolver::Direct,
+        LinearName::Iterative => LinearSolver::Iterative(iterative),
+        LinearName::Auto => LinearSolver::Auto(iterative),
+    };
     s
 }

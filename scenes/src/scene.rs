@@ -684,15 +684,20 @@ pub struct SolverSpec {
     pub max_dual_iterations: Option<usize>,
     /// Whether element Hessians are projected to PSD.
     pub project_hessians: Option<bool>,
-    /// `direct` or `iterative`.
+    /// `direct`, `iterative`, or `auto` (direct up to
+    /// [`isochor_solvers::AUTO_DIRECT_UNKNOWNS`] unknowns, iterative above).
     pub linear: Option<LinearName>,
-    /// Relative tolerance of the iterative linear solver.
+    /// The tightest relative residual of the iterative linear solver (the floor of its
+    /// inexact-Newton forcing terms; default 1e-8).
     pub linear_tolerance: Option<f64>,
     /// Iteration limit of the iterative linear solver.
     pub linear_max_iterations: Option<usize>,
     /// Fill-reducing ordering of the direct factorizations: `amd`, `nested-dissection`
     /// (METIS) or `auto` (the default: AMD on small systems, nested dissection on large).
     pub ordering: Option<OrderingName>,
+    /// Preconditioner of the iterative linear solver's stiffness block:
+    /// `incomplete-cholesky` (default) or `jacobi`.
+    pub linear_preconditioner: Option<PreconditionerName>,
     /// Largest accepted penetration into an obstacle, relative to the mesh's bounding-box
     /// diagonal (default 1e-6).
     pub contact_tolerance: Option<f64>,
@@ -704,6 +709,21 @@ pub struct SolverSpec {
     pub accept_unconverged: Option<bool>,
 }
 
+impl SolverSpec {
+    /// The linear solver chosen: `linear`, else `iterative` when any `linear_*` key of the
+    /// iterative solver is given, else `direct`.
+    pub fn linear_choice(&self) -> LinearName {
+        let iterative_key = self.linear_tolerance.is_some()
+            || self.linear_max_iterations.is_some()
+            || self.linear_preconditioner.is_some();
+        match self.linear {
+            Some(name) => name,
+            None if iterative_key => LinearName::Iterative,
+            None => LinearName::Direct,
+        }
+    }
+}
+
 /// Linear solver choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -712,6 +732,18 @@ pub enum LinearName {
     Direct,
     /// CG or MINRES.
     Iterative,
+    /// Direct for small systems, iterative for large ones.
+    Auto,
+}
+
+/// Preconditioner of the iterative linear solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PreconditionerName {
+    /// Diagonal scaling.
+    Jacobi,
+    /// Zero-fill incomplete Cholesky.
+    IncompleteCholesky,
 }
 
 /// Fill-reducing ordering choice.

@@ -31,11 +31,8 @@ const DYNAMIC: &str = "dynamic-cube";
 
 fn iterative(s: &Built) -> Option<(f64, usize)> {
     match s.settings.linear {
-        LinearSolver::Iterative {
-            tolerance,
-            max_iterations,
-        } => Some((tolerance, max_iterations)),
-        LinearSolver::Direct => None,
+        LinearSolver::Iterative(i) => Some((i.tolerance, i.max_iterations)),
+        LinearSolver::Direct | LinearSolver::Auto(_) => None,
     }
 }
 
@@ -376,6 +373,17 @@ const CASES: &[Case] = &[
         value: "77",
         reached: |_, b| iterative(b).is_some_and(|(_, n)| n == 77),
         bad: "-1",
+    },
+    Case {
+        key: "linear_preconditioner",
+        scene: STATIC,
+        setup: &[],
+        value: "jacobi",
+        reached: |_, b| {
+            matches!(b.settings.linear, LinearSolver::Iterative(i)
+                if i.preconditioner == isochor_solvers::PreconditionerKind::Jacobi)
+        },
+        bad: "ilu",
     },
     Case {
         key: "zones",

@@ -45,7 +45,9 @@ pub use model::{
     Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, MaterialModel, Method,
     Motion, Obstacle, Problem, ProblemBuilder, Region, Regions, ScheduledLoad, Shape, ZonalEnergy,
 };
-pub use settings::{LinearSolver, Settings};
+pub use settings::{
+    IterativeSettings, LinearSolver, PreconditionerKind, Settings, AUTO_DIRECT_UNKNOWNS,
+};
 pub use simulation::{
     Adaptive, Checkpoint, Energies, Frame, Linearizer, Matrices, NewtonSystem, Progress,
     RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping,

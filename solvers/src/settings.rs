@@ -9,14 +9,66 @@ pub enum LinearSolver {
     /// symbolic factorization reused.
     #[default]
     Direct,
-    /// Preconditioned iterative solve (CG for SPD, MINRES for saddle points) with a relative
-    /// tolerance and an iteration limit, for meshes too large to factor (sec. 8 of Francu et al.).
-    Iterative {
-        /// Relative residual at which the iteration stops.
-        tolerance: f64,
-        /// Iterations allowed per linear solve.
-        max_iterations: usize,
-    },
+    /// Preconditioned iterative solve (CG for SPD, MINRES for saddle points), for meshes too
+    /// large to factor (sec. 8 of Francu et al.).
+    Iterative(IterativeSettings),
+    /// [`LinearSolver::Direct`] for systems of at most [`AUTO_DIRECT_UNKNOWNS`] unknowns,
+    /// [`LinearSolver::Iterative`] with these settings above.
+    Auto(IterativeSettings),
+}
+
+/// Systems of at most this many unknowns (free DOFs plus constraint rows) are solved
+/// directly by [`LinearSolver::Auto`]. On the cantilever at nu = 0.4999 the direct solver was
+/// faster than the iterative one at every size measured (README, "The iterative linear
+/// path"), so the switch sits where the direct factor's memory becomes the limit: the scenes'
+/// memory model (`410 B * n^(4/3)` of fill) reaches 4 GiB, a sixth of a 24 GiB machine, at
+/// about 180k unknowns.
+pub const AUTO_DIRECT_UNKNOWNS: usize = 180_000;
+
+impl LinearSolver {
+    /// The iterative settings to use for a system of `unknowns` unknowns, or `None` for
+    /// the direct solver.
+    pub fn iterative_for(self, unknowns: usize) -> Option<IterativeSettings> {
+        match self {
+            LinearSolver::Direct => None,
+            LinearSolver::Iterative(s) => Some(s),
+            LinearSolver::Auto(s) => (unknowns > AUTO_DIRECT_UNKNOWNS).then_some(s),
+        }
+    }
+}
+
+/// Settings of the iterative linear solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IterativeSettings {
+    /// The tightest relative residual a solve is asked for: the floor of the inexact-Newton
+    /// forcing terms, which loosen the solves far from convergence (Eisenstat and Walker
+    /// 1996, choice 2).
+    pub tolerance: f64,
+    /// Iterations allowed per linear solve.
+    pub max_iterations: usize,
+    /// Preconditioner of the stiffness block.
+    pub preconditioner: PreconditionerKind,
+}
+
+impl Default for IterativeSettings {
+    fn default() -> Self {
+        IterativeSettings {
+            tolerance: 1e-8,
+            max_iterations: 1000,
+            preconditioner: PreconditionerKind::default(),
+        }
+    }
+}
+
+/// Preconditioner of the stiffness block `K` in CG, and of the `K` block of the
+/// block-diagonal saddle-point preconditioner in MINRES.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PreconditionerKind {
+    /// `diag(K)` (sec. 8 of Francu et al. 2021).
+    Jacobi,
+    /// Zero-fill incomplete Cholesky of `K`, shifted if a pivot breaks down.
+    #[default]
+    IncompleteCholesky,
 }
 
 /// Limits and tolerances of the nonlinear solvers.

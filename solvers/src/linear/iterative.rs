@@ -1,10 +1,10 @@
-//! Matrix-free Krylov solvers with diagonal preconditioning (sec. 8 of Francu et al.
-//! 2021, where conjugate residuals and CG solved eq. 21/24 with Jacobi scaling):
-//! preconditioned CG for SPD systems and preconditioned MINRES (Paige and Saunders
-//! 1975) for the symmetric indefinite saddle-point operator [`super::SaddlePoint`].
+//! Matrix-free Krylov solvers (sec. 8 of Francu et al. 2021, where conjugate residuals
+//! and CG solved eq. 21/24 with Jacobi scaling): preconditioned CG for SPD systems and
+//! preconditioned MINRES (Paige and Saunders 1975) for the symmetric indefinite
+//! saddle-point operator [`super::SaddlePoint`], each with any SPD [`Preconditioner`].
 
 use super::operator::{norm, LinearOperator};
-use super::{relative_residual, Jacobi, LinearError};
+use super::{relative_residual, LinearError, Preconditioner};
 use std::time::{Duration, Instant};
 
 /// Stopping rule of the Krylov solvers.
@@ -36,7 +36,12 @@ pub struct IterativeReport {
     pub time: Duration,
 }
 
-fn check_dims(a: &dyn LinearOperator, m: &Jacobi, b: &[f64], x: &[f64]) -> Result<(), LinearError> {
+fn check_dims(
+    a: &dyn LinearOperator,
+    m: &dyn Preconditioner,
+    b: &[f64],
+    x: &[f64],
+) -> Result<(), LinearError> {
     let n = a.nrows();
     if a.ncols() != n {
         return Err(LinearError::NotSquare {
@@ -48,7 +53,7 @@ fn check_dims(a: &dyn LinearOperator, m: &Jacobi, b: &[f64], x: &[f64]) -> Resul
     for (what, got) in [
         ("right-hand side", b.len()),
         ("initial guess", x.len()),
-        ("preconditioner", m.len()),
+        ("preconditioner", m.dim()),
     ] {
         if got != n {
             return Err(LinearError::DimensionMismatch {
@@ -69,7 +74,7 @@ fn check_dims(a: &dyn LinearOperator, m: &Jacobi, b: &[f64], x: &[f64]) -> Resul
 /// Checks the inputs; for `b = 0` sets `x = 0` and returns the finished report.
 fn prologue(
     a: &dyn LinearOperator,
-    m: &Jacobi,
+    m: &dyn Preconditioner,
     b: &[f64],
     x: &mut [f64],
     start: Instant,
@@ -95,7 +100,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// (the operator is not SPD); running out of iterations is [`LinearError::NotConverged`].
 pub fn cg(
     a: &dyn LinearOperator,
-    m: &Jacobi,
+    m: &dyn Preconditioner,
     b: &[f64],
     x: &mut [f64],
     options: IterativeOptions,
@@ -155,15 +160,16 @@ pub fn cg(
     })
 }
 
-/// Preconditioned MINRES for symmetric (possibly indefinite) `A` with an SPD diagonal
-/// preconditioner, such as the KKT operator with the absolute-value Jacobi scaling of
+/// Preconditioned MINRES for symmetric (possibly indefinite) `A` with an SPD
+/// preconditioner, such as the KKT operator with the block-diagonal
+/// [`super::BlockDiagonal`] or the absolute-value Jacobi scaling of
 /// [`super::saddle_point_diagonal`]. Solves `A x = b` starting from the `x` given.
 ///
 /// MINRES minimizes the `M^-1`-norm of the residual; its estimate drives the
 /// iteration and the true residual `|b - A x| / |b|` is checked before returning.
 pub fn minres(
     a: &dyn LinearOperator,
-    m: &Jacobi,
+    m: &dyn Preconditioner,
     b: &[f64],
     x: &mut [f64],
     options: IterativeOptions,

@@ -4,6 +4,7 @@
 //! equation". The constraint rows are scaled by the diagonal of the Schur complement
 //! estimate `G diag(K)^-1 G^T + C` (the approximation of eq. 38 by `diag(K)`).
 
+use super::Preconditioner;
 use faer::sparse::SparseColMatRef;
 
 /// The diagonal of a square sparse matrix (zeros where no entry is stored).
@@ -82,19 +83,14 @@ impl Jacobi {
             inv_diag: vec![1.0; n],
         }
     }
+}
 
-    /// Dimension.
-    pub fn len(&self) -> usize {
+impl Preconditioner for Jacobi {
+    fn dim(&self) -> usize {
         self.inv_diag.len()
     }
 
-    /// Whether the dimension is zero.
-    pub fn is_empty(&self) -> bool {
-        self.inv_diag.is_empty()
-    }
-
-    /// `z = M^-1 r`.
-    pub fn apply(&self, r: &[f64], z: &mut [f64]) {
+    fn apply(&self, r: &[f64], z: &mut [f64]) {
         z.iter_mut()
             .zip(r.iter().zip(&self.inv_diag))
             .for_each(|(zi, (ri, di))| *zi = ri * di);

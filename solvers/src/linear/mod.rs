@@ -2,7 +2,8 @@
 //! iteration, sparse Cholesky for SPD systems, supernodal `LDL^T` with inertia check
 //! for the saddle-point systems of eq. 21/24 (Francu et al. 2021), both under a
 //! fill-reducing [`Ordering`] (AMD or METIS nested dissection), and matrix-free
-//! CG / MINRES with diagonal preconditioning (sec. 8).
+//! CG / MINRES (sec. 8) with interchangeable preconditioners: diagonal scaling,
+//! incomplete Cholesky, and the block-diagonal saddle-point preconditioner.
 //!
 //! Symmetric matrices are given with both triangles (as the element kernels emit them)
 //! or only the lower one; the factorizations read the lower triangle (`row >= col`).
@@ -25,6 +26,7 @@
 mod cholesky;
 mod error;
 mod fill_reducing;
+mod incomplete_cholesky;
 mod iterative;
 mod jacobi;
 mod kkt;
@@ -32,16 +34,19 @@ mod nested_dissection;
 mod operator;
 mod ordering;
 mod pattern;
+mod preconditioner;
 mod report;
 mod shift;
 
 pub use cholesky::CholeskySolver;
 pub use error::LinearError;
 pub use fill_reducing::Ordering;
+pub use incomplete_cholesky::IncompleteCholesky;
 pub use iterative::{cg, minres, IterativeOptions, IterativeReport};
 pub use jacobi::{diagonal, saddle_point_diagonal, Jacobi};
 pub use kkt::{KktOptions, KktSolver, PivotRegularization};
 pub use operator::{relative_residual, LinearOperator, SaddlePoint, SymmetricLower};
 pub use pattern::{entry_pairs, SparsityPattern, Triangle};
+pub use preconditioner::{BlockDiagonal, Preconditioner};
 pub use report::{Factorization, Inertia, SolveReport};
 pub use shift::{max_abs_diagonal, ShiftSchedule};

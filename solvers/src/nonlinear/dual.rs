@@ -141,6 +141,9 @@ pub fn solve(
         }
         newton
             .cholesky()
+            .ok_or_else(|| {
+                SolverError::InvalidProblem("the dual solver needs the direct linear solver".into())
+            })?
             .solve_in_place(&mut z)
             .map_err(|e| SolverError::Linear(e.to_string()))?;
         let mut a2_d = vec![0.0; m];

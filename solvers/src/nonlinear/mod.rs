@@ -3,6 +3,8 @@
 //! (`dual`), each driven by the [`target::StepTarget`] of one load or time step.
 
 pub mod dual;
+pub mod forcing;
+pub mod krylov;
 pub mod newton;
 pub mod saddle;
 pub mod target;

@@ -4,11 +4,12 @@
 //! elements under `log J`) and enforces sufficient decrease (Armijo).
 
 use crate::assembly::{Evaluation, System};
-use crate::linear::{
-    cg, diagonal, CholeskySolver, IterativeOptions, Jacobi, ShiftSchedule, SymmetricLower,
-};
+use crate::linear::{CholeskySolver, ShiftSchedule};
+use crate::model::NonlinearScheme;
+use crate::nonlinear::forcing::Forcing;
+use crate::nonlinear::krylov::solve_stiffness;
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::LinearSolver;
+use crate::IterativeSettings;
 use crate::{IterationReport, SolverError, StepReport};
 use faer::sparse::SparseColMat;
 use isochor_mesh::Vec3;
@@ -17,26 +18,51 @@ use std::time::Instant;
 /// Armijo sufficient-decrease constant.
 const ARMIJO: f64 = 1e-4;
 
-/// A Newton minimizer with its factorization, kept across steps and iterations.
+/// How a Newton step is solved.
+#[derive(Debug)]
+enum Linear {
+    /// Sparse Cholesky, symbolic analysis kept across steps and iterations.
+    Direct(Box<CholeskySolver>),
+    /// Preconditioned CG with inexact-Newton forcing terms (reset every step).
+    Iterative(IterativeSettings, Forcing),
+}
+
+/// A Newton minimizer with its linear solver, kept across steps and iterations.
 #[derive(Debug)]
 pub struct Newton {
-    cholesky: CholeskySolver,
+    linear: Linear,
 }
 
 impl Newton {
-    /// Symbolic analysis of the system's Hessian pattern (once per run).
+    /// The linear solver the settings choose for the system's size (always direct for the
+    /// dual solver, which reuses the factorization); symbolic analysis of the Hessian
+    /// pattern for the direct one (once per run).
     pub fn new(system: &System<'_>) -> Result<Self, SolverError> {
-        let cholesky = CholeskySolver::with_ordering(
-            system.hessian.pattern().symbolic(),
-            system.settings.ordering,
-        )
-        .map_err(|e| SolverError::Linear(e.to_string()))?;
-        Ok(Newton { cholesky })
+        let pattern = system.hessian.pattern();
+        let iterative = match system.model.scheme {
+            NonlinearScheme::Dual => None,
+            _ => system
+                .settings
+                .linear
+                .iterative_for(pattern.symbolic().nrows()),
+        };
+        let linear = match iterative {
+            Some(settings) => Linear::Iterative(settings, Forcing::new(settings.tolerance)),
+            None => Linear::Direct(Box::new(
+                CholeskySolver::with_ordering(pattern.symbolic(), system.settings.ordering)
+                    .map_err(|e| SolverError::Linear(e.to_string()))?,
+            )),
+        };
+        Ok(Newton { linear })
     }
 
-    /// The factorization of the latest Newton matrix (reused by the dual solver, eq. 41).
-    pub fn cholesky(&mut self) -> &mut CholeskySolver {
-        &mut self.cholesky
+    /// The factorization of the latest Newton matrix (reused by the dual solver, eq. 41);
+    /// `None` on the iterative path.
+    pub fn cholesky(&mut self) -> Option<&mut CholeskySolver> {
+        match &mut self.linear {
+            Linear::Direct(cholesky) => Some(cholesky),
+            Linear::Iterative(..) => None,
+        }
     }
 
     /// Minimizes the energy of `system` over the free DOFs of `x`, driving prescribed DOFs
@@ -50,6 +76,7 @@ impl Newton {
         report: &mut StepReport,
     ) -> Result<(), SolverError> {
         let iterations = system.settings.max_iterations;
+        self.restart_forcing();
         if self.iterate(system, x, target, report, iterations)? {
             Ok(())
         } else if let Some(gap) = remaining_gap(x, target) {
@@ -65,45 +92,44 @@ impl Newton {
     }
 
     /// Solves `K dx = rhs` in place, by Cholesky (shifting `K` until positive definite) or
-    /// by Jacobi-preconditioned CG; returns the shift used.
+    /// by preconditioned CG to the forcing term of the residual `force` (relative to the
+    /// nonlinear tolerance `target`); returns the shift of `K` and the Krylov iterations.
     fn solve_linear(
         &mut self,
-        linear: LinearSolver,
         k: faer::sparse::SparseColMatRef<'_, usize, f64>,
         rhs: &mut [f64],
+        (force, target): (f64, f64),
         report: &mut StepReport,
-    ) -> Result<f64, SolverError> {
+    ) -> Result<(f64, usize), SolverError> {
         let error = |e: crate::linear::LinearError| SolverError::Linear(e.to_string());
-        match linear {
-            LinearSolver::Direct => {
-                report.factor_nnz = self.cholesky.report().factor_nnz;
+        match &mut self.linear {
+            Linear::Direct(cholesky) => {
+                report.factor_nnz = cholesky.report().factor_nnz;
                 let start = Instant::now();
-                let shift = self
-                    .cholesky
+                let shift = cholesky
                     .factorize_with_shifts(k, &ShiftSchedule::default())
                     .map_err(error)?;
                 report.timings.factorization += start.elapsed();
                 let start = Instant::now();
-                self.cholesky.solve_in_place(rhs).map_err(error)?;
+                cholesky.solve_in_place(rhs).map_err(error)?;
                 report.timings.solve += start.elapsed();
-                Ok(shift)
+                Ok((shift, 0))
             }
-            LinearSolver::Iterative {
-                tolerance,
-                max_iterations,
-            } => {
+            Linear::Iterative(settings, forcing) => {
                 let start = Instant::now();
-                let preconditioner = Jacobi::from_diagonal(&diagonal(k));
-                let b = rhs.to_vec();
-                rhs.fill(0.0);
-                let options = IterativeOptions {
-                    tolerance,
-                    max_iterations,
-                };
-                cg(&SymmetricLower(k), &preconditioner, &b, rhs, options).map_err(error)?;
+                let eta = forcing.next(force, target);
+                let (x, iterations) = solve_stiffness(settings, k, rhs, eta).map_err(error)?;
+                rhs.copy_from_slice(&x);
                 report.timings.solve += start.elapsed();
-                Ok(0.0)
+                Ok((0.0, iterations))
             }
+        }
+    }
+
+    /// Starts a new forcing-term sequence (a new load or time step).
+    pub fn restart_forcing(&mut self) {
+        if let Linear::Iterative(settings, forcing) = &mut self.linear {
+            *forcing = Forcing::new(settings.tolerance);
         }
     }
 
@@ -139,7 +165,12 @@ impl Newton {
             }
             report.timings.assembly += system.take_assembly_time();
 
-            let shift = self.solve_linear(settings.linear, k.as_ref(), &mut rhs, report)?;
+            let (shift, linear_iterations) = self.solve_linear(
+                k.as_ref(),
+                &mut rhs,
+                (force, target.force_tolerance),
+                report,
+            )?;
 
             let mut direction = d_fixed.clone();
             for (&dof, dx) in dofs.free().iter().zip(&rhs) {
@@ -193,6 +224,7 @@ impl Newton {
                 step_length: alpha,
                 backtracks,
                 regularization: shift,
+                linear_iterations,
                 ..IterationReport::default()
             });
         }

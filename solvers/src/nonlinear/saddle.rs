@@ -12,15 +12,14 @@
 //! outside the domain of the energy or the constraints.
 
 use crate::assembly::System;
-use crate::linear::{
-    diagonal, minres, saddle_point_diagonal, CholeskySolver, IterativeOptions, Jacobi, KktOptions,
-    KktSolver, LinearOperator, SaddlePoint, ShiftSchedule, SymmetricLower,
-};
+use crate::linear::{CholeskySolver, KktOptions, KktSolver, ShiftSchedule};
 use crate::model::NonlinearScheme;
+use crate::nonlinear::forcing::Forcing;
+use crate::nonlinear::krylov::{solve_saddle, SaddleSystem};
 use crate::nonlinear::target::{
     add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
 };
-use crate::{IterationReport, LinearSolver, LoadLevel, SolverError, StepReport};
+use crate::{IterationReport, IterativeSettings, LoadLevel, SolverError, StepReport};
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, DVector};
@@ -37,17 +36,26 @@ const WATCHDOG_STEPS: usize = 3;
 enum Linear {
     Direct(Box<KktSolver>),
     Schur(Box<Schur>),
-    /// Jacobi-preconditioned MINRES on the whole saddle-point operator (sec. 8 of Francu et
-    /// al. 2021), keeping the latest matrices for the solves.
+    /// MINRES on the whole saddle-point operator (sec. 8 of Francu et al. 2021) with a
+    /// block-diagonal preconditioner, keeping the latest matrices for the solves.
     Iterative(Box<Iterative>),
 }
 
-/// MINRES options and the latest `K` and `G`.
+/// The iterative path's settings, forcing terms and latest `K` and `G`.
 #[derive(Debug)]
 struct Iterative {
-    options: IterativeOptions,
+    settings: IterativeSettings,
+    forcing: Forcing,
+    /// The relative tolerance of this Newton iteration's solves.
+    eta: f64,
+    /// Krylov iterations since the last Newton iteration was reported.
+    iterations: usize,
     k: SparseColMat<usize, f64>,
     g: SparseColMat<usize, f64>,
+    /// The rest volume of each constraint row and the shear modulus, for the pressure block
+    /// of the preconditioner.
+    row_volumes: Vec<f64>,
+    mu: f64,
 }
 
 /// The Schur complement solve of the zonal KKT system: `K` factorized by Cholesky, the few
@@ -119,23 +127,21 @@ impl SaddleNewton {
             .jacobian
             .as_ref()
             .ok_or_else(|| SolverError::InvalidProblem("no Jacobian layout".into()))?;
-        let linear = match (system.settings.linear, system.model.scheme) {
-            (
-                LinearSolver::Iterative {
-                    tolerance,
-                    max_iterations,
-                },
-                _,
-            ) => {
+        let unknowns = system.hessian.pattern().symbolic().nrows() + m;
+        let iterative = system.settings.linear.iterative_for(unknowns);
+        let linear = match (iterative, system.model.scheme) {
+            (Some(settings), _) => {
                 let empty =
                     |r, c| SparseColMat::try_new_from_triplets(r, c, &[]).expect("empty matrix");
                 Linear::Iterative(Box::new(Iterative {
-                    options: IterativeOptions {
-                        tolerance,
-                        max_iterations,
-                    },
+                    settings,
+                    forcing: Forcing::new(settings.tolerance),
+                    eta: settings.tolerance,
+                    iterations: 0,
                     k: empty(0, 0),
                     g: empty(0, 0),
+                    row_volumes: system.model.row_volumes.clone(),
+                    mu: system.model.mu(),
                 }))
             }
             (_, NonlinearScheme::SaddleSchur) => Linear::Schur(Box::new(Schur {
@@ -282,6 +288,9 @@ impl SaddleNewton {
         };
         let n_dofs = 3 * x.len();
         let mut nonmonotone_budget = WATCHDOG_STEPS;
+        if let Linear::Iterative(state) = &mut self.linear {
+            state.forcing = Forcing::new(state.settings.tolerance);
+        }
         for _ in 0..settings.max_iterations {
             let Linearized {
                 d_fixed,
@@ -311,6 +320,11 @@ impl SaddleNewton {
             }
             report.timings.assembly += system.take_assembly_time();
 
+            if let Linear::Iterative(state) = &mut self.linear {
+                // No single tolerance applies to the mixed force/volume norm: target 0.
+                let b = norm(&rhs_x).hypot(norm(&rhs_p));
+                state.eta = state.forcing.next(b, 0.0);
+            }
             let shift = self.factorize(k, g, report)?;
             let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
 
@@ -391,6 +405,10 @@ impl SaddleNewton {
                 step_length: alpha,
                 backtracks,
                 regularization: shift,
+                linear_iterations: match &mut self.linear {
+                    Linear::Iterative(state) => std::mem::take(&mut state.iterations),
+                    _ => 0,
+                },
             });
         }
         if let Some(gap) = remaining_gap(x, target) {
@@ -513,29 +531,18 @@ impl SaddleNewton {
                 (dx.as_slice().to_vec(), dp.as_slice().to_vec())
             }
             Linear::Iterative(state) => {
-                let Iterative { options, k, g } = state.as_ref();
-                let c = self.compliance.as_ref().map(|c| c.as_ref());
-                let c_op = c.as_ref().map(|c| c as &dyn LinearOperator);
-                let k_op = SymmetricLower(k.as_ref());
-                let operator = SaddlePoint {
-                    k: &k_op,
-                    g: g.as_ref(),
-                    c: c_op,
+                let saddle = SaddleSystem {
+                    k: state.k.as_ref(),
+                    g: state.g.as_ref(),
+                    c: self.compliance.as_ref().map(|c| c.as_ref()),
+                    row_volumes: &state.row_volumes,
+                    mu: state.mu,
                 };
-                let c_diag: Option<Vec<f64>> = c.map(diagonal);
-                let scales =
-                    saddle_point_diagonal(&diagonal(k.as_ref()), g.as_ref(), c_diag.as_deref());
                 let mut b = f;
                 b.extend(h);
-                let mut solution = vec![0.0; b.len()];
-                minres(
-                    &operator,
-                    &Jacobi::from_diagonal(&scales),
-                    &b,
-                    &mut solution,
-                    *options,
-                )
-                .map_err(linear_error)?;
+                let (mut solution, iterations) =
+                    solve_saddle(&state.settings, &saddle, &b, state.eta).map_err(linear_error)?;
+                state.iterations += iterations;
                 let dp = solution.split_off(nf);
                 (solution, dp)
             }

@@ -373,7 +373,9 @@ impl Simulation {
                 "accept_unconverged does not apply to dual: its max_iterations counts primal iterations per dual iteration".into(),
             ));
         }
-        if model.scheme == NonlinearScheme::Dual && settings.linear != crate::LinearSolver::Direct {
+        if model.scheme == NonlinearScheme::Dual
+            && matches!(settings.linear, crate::LinearSolver::Iterative(_))
+        {
             return Err(SolverError::InvalidProblem(
                 "the dual solver reuses the primal factorization (eq. 41): use the direct linear solver".into(),
             ));

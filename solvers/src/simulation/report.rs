@@ -21,6 +21,8 @@ pub struct IterationReport {
     pub backtracks: usize,
     /// Shift added to the stiffness to restore the right inertia (0 if none).
     pub regularization: f64,
+    /// Krylov iterations of the iteration's linear solves (0 on the direct path).
+    pub linear_iterations: usize,
 }
 
 /// Where the time of a step went.
