@@ -1276,8 +1276,7 @@ fn series_styles(study: &Study) -> Vec<SeriesStyle> {
         .map(|(method, element)| SeriesStyle {
             method: method.clone(),
             element: element.clone(),
-            color: Palette99::pick(methods.iter().position(|m| m == method).unwrap_or(0))
-                .to_rgba(),
+            color: Palette99::pick(methods.iter().position(|m| m == method).unwrap_or(0)).to_rgba(),
             solid: elements.first() == Some(&element.as_str()),
         })
         .collect()
@@ -1366,9 +1365,7 @@ pub fn plot_unknowns(path: &Path, study: &Study) -> Result<(), SceneError> {
         .reference
         .as_ref()
         .map(|r| (r.value(), r.value().abs() * r.relative_uncertainty()));
-    let band = reference
-        .into_iter()
-        .flat_map(|(v, u)| [v - u, v, v + u]);
+    let band = reference.into_iter().flat_map(|(v, u)| [v - u, v, v + u]);
     let (v_lo, v_hi) = range(points.iter().map(|p| p.2).chain(band));
     let root = BitMapBackend::new(path, (1000, 650)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
@@ -1380,7 +1377,10 @@ pub fn plot_unknowns(path: &Path, study: &Study) -> Result<(), SceneError> {
             r.value(),
             100.0 * r.relative_uncertainty()
         ),
-        None => format!("{}: {} against unknowns (no reference)", study.scene, study.probe),
+        None => format!(
+            "{}: {} against unknowns (no reference)",
+            study.scene, study.probe
+        ),
     };
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 17))
@@ -1427,7 +1427,13 @@ pub fn plot_unknowns(path: &Path, study: &Study) -> Result<(), SceneError> {
             .collect();
         draw_series(&mut chart, study, &style, &series, path)?;
     }
-    finish_plot(&mut chart, &root, SeriesLabelPosition::UpperRight, true, path)
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::UpperRight,
+        true,
+        path,
+    )
 }
 
 #[cfg(test)]

@@ -546,7 +546,10 @@ fn cantilever_study_on_two_elements_skips_runs_over_the_limit() {
         "{md}"
     );
     for plot in ["study.png", "study-unknowns.png"] {
-        assert!(std::fs::metadata(written.join(plot)).unwrap().len() > 0, "{plot}");
+        assert!(
+            std::fs::metadata(written.join(plot)).unwrap().len() > 0,
+            "{plot}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
