@@ -140,7 +140,8 @@ pub enum Command {
         /// Override a parameter in every run.
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
-        /// Write study.csv, study.md and study.png to this folder (default: study-SCENE).
+        /// Write study.csv, study.md, study.png and study-unknowns.png to this folder (default:
+        /// study-SCENE).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
@@ -309,10 +310,11 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
             if let Some(dir) = written {
                 writeln!(
                     stdout,
-                    "wrote {}, {} and {}",
+                    "wrote {}, {}, {} and {}",
                     dir.join("study.csv").display(),
                     dir.join("study.md").display(),
-                    dir.join("study.png").display()
+                    dir.join("study.png").display(),
+                    dir.join("study-unknowns.png").display()
                 )
                 .map_err(io)?;
             }

@@ -172,7 +172,11 @@ fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
             )
         }
         // The vertices of the uncarved grid: at most a few percent more.
-        MeshSpec::Cushion { res } | MeshSpec::Bubble { res } => {
+        MeshSpec::Cushion { res } => {
+            let r = *res as f64;
+            ((6.0 * r + 1.0).powi(2) * (4.0 * r + 1.0), 768.0 * r.powi(3))
+        }
+        MeshSpec::Bubble { res } => {
             let r = *res as f64;
             ((6.0 * r + 1.0).powi(2) * (3.0 * r + 1.0), 552.0 * r.powi(3))
         }

@@ -186,8 +186,8 @@ pub enum MeshSpec {
         /// Resolution: cells per centimetre.
         res: usize,
     },
-    /// The "cushion" of Francu et al. 2021, Fig. 6 (shape ours): a 40 x 40 x 10 mm pad with a
-    /// closed 30 x 30 x 4 mm chamber (`isochor_mesh::generate::cushion`, `552 res^3` tets),
+    /// The "cushion" of Francu et al. 2021, Fig. 6 (shape ours): a 40 x 40 x 13 mm pad with a
+    /// closed 30 x 30 x 4 mm chamber (`isochor_mesh::generate::cushion`, `768 res^3` tets),
     /// groups `base`, `chamber`, `top`.
     Cushion {
         /// Resolution: cells across the thinnest wall.

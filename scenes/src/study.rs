@@ -23,9 +23,10 @@
 //! whose own extrapolation lies farther from the reference than a level (beyond both
 //! uncertainties) converges elsewhere: its runs within that level are crossings and do not
 //! count as reaching it.
-//! Outputs: `study.csv`, `study.md` and the log-log plot `study.png` of error against time.
+//! Outputs: `study.csv`, `study.md`, the log-log plot `study.png` of error against time and
+//! `study-unknowns.png`, the probe against the unknowns (log scale) with the reference line.
 
-use crate::output::{finish_plot, plot_error, tick, write_file, OutputDir};
+use crate::output::{finish_plot, plot_error, range, tick, write_file, OutputDir};
 use crate::overrides::{parse_sweep, Override};
 use crate::result::RunResult;
 use crate::run::{run_scene, RunOptions};
@@ -67,7 +68,7 @@ pub struct StudyRequest {
     pub max_unknowns: Option<usize>,
     /// `--set` overrides applied to every run.
     pub overrides: Vec<Override>,
-    /// Output folder for `study.csv`, `study.md` and `study.png`.
+    /// Output folder for `study.csv`, `study.md`, `study.png` and `study-unknowns.png`.
     pub out: Option<PathBuf>,
     /// Progress bars on stderr.
     pub progress: bool,
@@ -462,6 +463,7 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
             write_file(&dir.path().join("study.csv"), study.to_csv().as_bytes())?;
             write_file(&dir.path().join("study.md"), study.to_markdown().as_bytes())?;
             plot_study(&dir.path().join("study.png"), &study)?;
+            plot_unknowns(&dir.path().join("study-unknowns.png"), &study)?;
             Some(dir.commit()?)
         }
         None => None,
@@ -1188,70 +1190,13 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
             ))
             .map_err(|e| plot_error(path, e))?;
     }
-    // One color per method; the first element solid with circles, the others dashed with
-    // triangles.
-    let keys = study.series_keys();
-    let mut methods: Vec<&str> = Vec::new();
-    let mut elements: Vec<&str> = Vec::new();
-    for (m, e) in &keys {
-        if !methods.contains(&m.as_str()) {
-            methods.push(m);
-        }
-        if !elements.contains(&e.as_str()) {
-            elements.push(e);
-        }
-    }
-    for (method, element) in &keys {
-        let k = methods.iter().position(|m| m == method).unwrap_or(0);
-        let solid = elements.first() == Some(&element.as_str());
-        let color = Palette99::pick(k).to_rgba();
+    for style in series_styles(study) {
         let series: Vec<(f64, f64, String)> = points
             .iter()
-            .filter(|p| study.runs[p.0].method == *method && study.runs[p.0].element == *element)
+            .filter(|p| style.has(&study.runs[p.0]))
             .map(|p| (p.1, err(p.2), study.runs[p.0].label.clone()))
             .collect();
-        if series.is_empty() {
-            continue;
-        }
-        let line = series.iter().map(|p| (p.0, p.1));
-        let drawn = if solid {
-            chart.draw_series(LineSeries::new(line, color.stroke_width(2)))
-        } else {
-            chart.draw_series(DashedLineSeries::new(line, 10, 5, color.stroke_width(2)))
-        };
-        drawn
-            .map_err(|e| plot_error(path, e))?
-            .label(study.label(method, element))
-            .legend(move |(x, y)| {
-                if solid {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                } else {
-                    PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
-                }
-            });
-        if solid {
-            chart.draw_series(
-                series
-                    .iter()
-                    .map(|p| Circle::new((p.0, p.1), 4, color.filled())),
-            )
-        } else {
-            chart.draw_series(
-                series
-                    .iter()
-                    .map(|p| TriangleMarker::new((p.0, p.1), 6, color.filled())),
-            )
-        }
-        .map_err(|e| plot_error(path, e))?;
-        chart
-            .draw_series(series.iter().map(|p| {
-                Text::new(
-                    format!("{}={}", study.sweep_key, p.2),
-                    (p.0, p.1),
-                    ("sans-serif", 13).into_font().color(&color),
-                )
-            }))
-            .map_err(|e| plot_error(path, e))?;
+        draw_series(&mut chart, study, &style, &series, path)?;
     }
     // The fastest run of each resolved level, circled once with every level it wins.
     let mut marked: Vec<(usize, Vec<f64>)> = Vec::new();
@@ -1288,6 +1233,199 @@ pub fn plot_study(path: &Path, study: &Study) -> Result<(), SceneError> {
                 ),
             )])
             .map_err(|e| plot_error(path, e))?;
+    }
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::UpperRight,
+        true,
+        path,
+    )
+}
+
+/// How one series is drawn: one color per method; the first element solid with circles, the
+/// others dashed with triangles.
+struct SeriesStyle {
+    method: String,
+    element: String,
+    color: RGBAColor,
+    solid: bool,
+}
+
+impl SeriesStyle {
+    /// Whether `run` belongs to this series.
+    fn has(&self, run: &StudyRun) -> bool {
+        run.method == self.method && run.element == self.element
+    }
+}
+
+/// The style of every series of `study`, in the order of its runs.
+fn series_styles(study: &Study) -> Vec<SeriesStyle> {
+    let keys = study.series_keys();
+    let mut methods: Vec<&str> = Vec::new();
+    let mut elements: Vec<&str> = Vec::new();
+    for (m, e) in &keys {
+        if !methods.contains(&m.as_str()) {
+            methods.push(m);
+        }
+        if !elements.contains(&e.as_str()) {
+            elements.push(e);
+        }
+    }
+    keys.iter()
+        .map(|(method, element)| SeriesStyle {
+            method: method.clone(),
+            element: element.clone(),
+            color: Palette99::pick(methods.iter().position(|m| m == method).unwrap_or(0)).to_rgba(),
+            solid: elements.first() == Some(&element.as_str()),
+        })
+        .collect()
+}
+
+/// Draws one series' `(x, y, swept value)` points: the curve in its style, a marker and
+/// `KEY=VALUE` at each point, and its legend entry. Nothing for no points.
+fn draw_series<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    study: &Study,
+    style: &SeriesStyle,
+    series: &[(f64, f64, String)],
+    path: &Path,
+) -> Result<(), SceneError>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    if series.is_empty() {
+        return Ok(());
+    }
+    let (color, solid) = (style.color, style.solid);
+    let line = series.iter().map(|p| (p.0, p.1));
+    let drawn = if solid {
+        chart.draw_series(LineSeries::new(line, color.stroke_width(2)))
+    } else {
+        chart.draw_series(DashedLineSeries::new(line, 10, 5, color.stroke_width(2)))
+    };
+    drawn
+        .map_err(|e| plot_error(path, e))?
+        .label(study.label(&style.method, &style.element))
+        .legend(move |(x, y)| {
+            let length = if solid { 20 } else { 8 };
+            PathElement::new(vec![(x, y), (x + length, y)], color.stroke_width(2))
+        });
+    if solid {
+        chart.draw_series(
+            series
+                .iter()
+                .map(|p| Circle::new((p.0, p.1), 4, color.filled())),
+        )
+    } else {
+        chart.draw_series(
+            series
+                .iter()
+                .map(|p| TriangleMarker::new((p.0, p.1), 6, color.filled())),
+        )
+    }
+    .map_err(|e| plot_error(path, e))?;
+    chart
+        .draw_series(series.iter().map(|p| {
+            Text::new(
+                format!("{}={}", study.sweep_key, p.2),
+                (p.0, p.1),
+                ("sans-serif", 13).into_font().color(&color),
+            )
+        }))
+        .map_err(|e| plot_error(path, e))?;
+    Ok(())
+}
+
+/// The probe's value against the unknowns (log scale), one curve per series in the styles of
+/// [`plot_study`], with the reference as a black line (dashed lines at its uncertainty, when
+/// it has one): how each method approaches the reference as the mesh is refined (Francu et
+/// al. 2021, Fig. 10). Runs that did not converge are left out.
+pub fn plot_unknowns(path: &Path, study: &Study) -> Result<(), SceneError> {
+    crate::output::register_font();
+    let points: Vec<(usize, f64, f64)> = study
+        .runs
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| Some((i, r.converged()?.dofs as f64, r.value?)))
+        .filter(|p| p.1 > 0.0)
+        .collect();
+    let (n_lo, n_hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.1), hi.max(p.1))
+        });
+    let (n_lo, n_hi) = if n_lo <= n_hi {
+        (n_lo / 1.5, n_hi * 1.5)
+    } else {
+        (1.0, 10.0)
+    };
+    let reference = study
+        .reference
+        .as_ref()
+        .map(|r| (r.value(), r.value().abs() * r.relative_uncertainty()));
+    let band = reference.into_iter().flat_map(|(v, u)| [v - u, v, v + u]);
+    let (v_lo, v_hi) = range(points.iter().map(|p| p.2).chain(band));
+    let root = BitMapBackend::new(path, (1000, 650)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+    let title = match &study.reference {
+        Some(r) => format!(
+            "{}: {} against unknowns (reference {:.4e}, uncertain by {:.2}%)",
+            study.scene,
+            study.probe,
+            r.value(),
+            100.0 * r.relative_uncertainty()
+        ),
+        None => format!(
+            "{}: {} against unknowns (no reference)",
+            study.scene, study.probe
+        ),
+    };
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 17))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(90)
+        .build_cartesian_2d((n_lo..n_hi).log_scale(), v_lo..v_hi)
+        .map_err(|e| plot_error(path, e))?;
+    chart
+        .configure_mesh()
+        .x_desc("unknowns")
+        .y_desc(study.probe.as_str())
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.4}"))
+        .draw()
+        .map_err(|e| plot_error(path, e))?;
+    if let Some((value, uncertainty)) = reference {
+        chart
+            .draw_series(LineSeries::new(
+                [(n_lo, value), (n_hi, value)],
+                BLACK.stroke_width(2),
+            ))
+            .map_err(|e| plot_error(path, e))?
+            .label("reference")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        if uncertainty > 0.0 {
+            for y in [value - uncertainty, value + uncertainty] {
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        [(n_lo, y), (n_hi, y)],
+                        8,
+                        6,
+                        RGBColor(130, 130, 130).stroke_width(1),
+                    ))
+                    .map_err(|e| plot_error(path, e))?;
+            }
+        }
+    }
+    for style in series_styles(study) {
+        let series: Vec<(f64, f64, String)> = points
+            .iter()
+            .filter(|p| style.has(&study.runs[p.0]))
+            .map(|p| (p.1, p.2, study.runs[p.0].label.clone()))
+            .collect();
+        draw_series(&mut chart, study, &style, &series, path)?;
     }
     finish_plot(
         &mut chart,

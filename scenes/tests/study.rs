@@ -1,7 +1,7 @@
 //! `isochor study`: the reference, the errors and the "resolved" decision checked against
 //! values computed by hand from synthetic runs (one series per method and element, a given
 //! reference value), and the whole command end to end on coarse cantilevers (every run
-//! recorded, the CSV, Markdown and PNG written; both elements; `--max-unknowns`).
+//! recorded, the CSV, Markdown and both plots written; both elements; `--max-unknowns`).
 //!
 //! The synthetic runs halve `h` each time (`res = 1, 2, 4, 8`), so Richardson's equation has
 //! the closed form `2^p = (f1 - f2) / (f2 - f3)` and `f_inf = f3 - (f2 - f3) / (2^p - 1)`: the
@@ -223,7 +223,7 @@ fn oscillating_values_are_not_extrapolated() {
 
 /// The command end to end: every method at every resolution is run and converges, the
 /// reference comes from one of them, and the CSV (one row per run, the reference in the last
-/// column), Markdown and PNG are written.
+/// column), Markdown and both plots (error against time, probe against unknowns) are written.
 #[test]
 fn cantilever_study_extrapolates_and_writes_its_outputs() {
     let dir = std::env::temp_dir().join(format!("isochor-study-test-{}", std::process::id()));
@@ -243,7 +243,7 @@ fn cantilever_study_extrapolates_and_writes_its_outputs() {
     let reference = extrapolated(&result);
     assert!(reference.previous_gap.is_some(), "four resolutions");
     let written = written.expect("an output folder");
-    for file in ["study.csv", "study.md", "study.png"] {
+    for file in ["study.csv", "study.md", "study.png", "study-unknowns.png"] {
         let len = std::fs::metadata(written.join(file)).unwrap().len();
         assert!(len > 0, "{file} is empty");
     }
@@ -545,7 +545,12 @@ fn cantilever_study_on_two_elements_skips_runs_over_the_limit() {
             && md.contains("skipped mixed-p1/tet10"),
         "{md}"
     );
-    assert!(std::fs::metadata(written.join("study.png")).unwrap().len() > 0);
+    for plot in ["study.png", "study-unknowns.png"] {
+        assert!(
+            std::fs::metadata(written.join(plot)).unwrap().len() > 0,
+            "{plot}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -6,20 +6,21 @@ use super::resolution;
 use crate::{MeshError, PhysicalGroups, TetMesh};
 
 /// Along x and y: a 5 mm wall, the 30 mm chamber, a 5 mm wall; along z: a 3 mm floor, the
-/// 4 mm chamber, a 3 mm roof (metres, cells at res 1).
+/// 4 mm chamber, a 6 mm roof of two cells (metres, cells at res 1). A 3 mm roof balloons at
+/// Table 1's 10 kPa and the mixed run stalls there.
 const SEGMENTS: [[(f64, usize); 3]; 3] = [
     [(0.005, 1), (0.030, 4), (0.005, 1)],
     [(0.005, 1), (0.030, 4), (0.005, 1)],
-    [(0.003, 1), (0.004, 1), (0.003, 1)],
+    [(0.003, 1), (0.004, 1), (0.006, 2)],
 ];
 
 /// Outer size of the cushion (x, y, z), in metres.
-pub const CUSHION_SIZE: [f64; 3] = [0.04, 0.04, 0.01];
+pub const CUSHION_SIZE: [f64; 3] = [0.04, 0.04, 0.013];
 
-/// The cushion: a `40 x 40 x 10` mm pad (`[0, 0.04]^2 x [0, 0.01]` m) with a closed
-/// `30 x 30 x 4` mm chamber at its centre (walls 5 mm thick around it, 3 mm above and below).
-/// A box grid of `6 res x 6 res x 3 res` hexes, Kuhn-split, without the chamber's
-/// `4 res x 4 res x res`: `552 res^3` tets (res 2: 4,416); the flattest hexes, `7.5 x 7.5 x 3`
+/// The cushion: a `40 x 40 x 13` mm pad (`[0, 0.04]^2 x [0, 0.013]` m) with a closed
+/// `30 x 30 x 4` mm chamber (walls 5 mm thick around it, 3 mm below, 6 mm above).
+/// A box grid of `6 res x 6 res x 4 res` hexes, Kuhn-split, without the chamber's
+/// `4 res x 4 res x res`: `768 res^3` tets (res 2: 6,144); the flattest hexes, `7.5 x 7.5 x 3`
 /// mm at res 1, give the worst tet quality (0.18, see [`TetMesh::quality`]).
 ///
 /// Groups (surfaces): `base` (the bottom face, z = 0), `chamber` (the chamber's walls, a
@@ -29,7 +30,7 @@ pub const CUSHION_SIZE: [f64; 3] = [0.04, 0.04, 0.01];
 pub fn cushion(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     let res = resolution(res, 16)?;
     let (carved, chamber) = chambered_box(&SEGMENTS, res)?;
-    let nz = 3 * res as isize;
+    let nz = 4 * res as isize;
     let groups = vec![
         carved.group("base", 1, |c| c[2] < 0),
         carved.group("chamber", 2, |c| super::carved::within(c, &chamber)),
@@ -48,17 +49,17 @@ mod tests {
     fn cushion_is_a_pad_with_a_closed_chamber() {
         for res in [1, 2] {
             let (mesh, groups) = cushion(res).unwrap();
-            assert_eq!(mesh.num_tets(), 552 * res.pow(3));
+            assert_eq!(mesh.num_tets(), 768 * res.pow(3));
             let chamber = 0.03 * 0.03 * 0.004;
             let area =
-                2.0 * 0.04 * 0.04 + 4.0 * 0.04 * 0.01 + 2.0 * (0.03 * 0.03 + 2.0 * 0.03 * 0.004);
+                2.0 * 0.04 * 0.04 + 4.0 * 0.04 * 0.013 + 2.0 * (0.03 * 0.03 + 2.0 * 0.03 * 0.004);
             let worst = kuhn_quality(7.5, 7.5, 3.0);
             assert!(
                 (mesh.worst_quality() - worst).abs() < 1e-12,
                 "{}",
                 mesh.worst_quality()
             );
-            check_generated(&mesh, &groups, 0.04 * 0.04 * 0.01 - chamber, area, chamber);
+            check_generated(&mesh, &groups, 0.04 * 0.04 * 0.013 - chamber, area, chamber);
             assert_eq!(groups.get("base").unwrap().faces.len(), 72 * res * res);
             assert_eq!(groups.get("top").unwrap().faces.len(), 72 * res * res);
         }

@@ -16,7 +16,7 @@
 //! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) | 0.26 at res 2 |
 //! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) | 0.19 at res 4 |
 //! | [`spine_arm`] `res` | `1260 res^3` (a bar with five through-holes) | 0.27 |
-//! | [`cushion`] `res` | `552 res^3` (res 2: 4,416; a pad with a flat chamber) | 0.18 |
+//! | [`cushion`] `res` | `768 res^3` (res 2: 6,144; a pad with a flat chamber) | 0.18 |
 //! | [`bubble`] `res` | `552 res^3` (res 2: 4,416; a chamber under a membrane) | 0.18 |
 //! | [`finger`] `res` | `1494 res^3` (res 2: 11,952; five chambers joined by a channel) | 0.12 |
 //!
