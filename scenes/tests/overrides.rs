@@ -375,6 +375,14 @@ const CASES: &[Case] = &[
         bad: "-1",
     },
     Case {
+        key: "ordering",
+        scene: STATIC,
+        setup: &[],
+        value: "nested-dissection",
+        reached: |_, b| b.settings.ordering == isochor_solvers::linear::Ordering::NestedDissection,
+        bad: "metis",
+    },
+    Case {
         key: "linear_preconditioner",
         scene: STATIC,
         setup: &[],
