@@ -158,3 +158,30 @@ pub fn per_iteration(summary: &RunSummary) -> [Duration; 4] {
     }
     t.map(|d| d / n)
 }
+
+/// Largest displacement difference relative to the largest displacement.
+pub fn relative_difference(rest: &[Vec3], a: &[Vec3], b: &[Vec3]) -> f64 {
+    let scale = rest
+        .iter()
+        .zip(a)
+        .map(|(r, x)| (x - r).norm())
+        .fold(0.0, f64::max);
+    let diff = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).norm())
+        .fold(0.0, f64::max);
+    diff / scale
+}
+
+/// Deterministic pseudo-random numbers in [-1, 1) (xorshift).
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::cantilever;
+use common::{cantilever, relative_difference};
 use isochor_constraints::NodalCompliance;
 use isochor_mesh::Vec3;
 use isochor_solvers::{
@@ -17,21 +17,6 @@ fn solve(problem: Problem) -> Vec<Vec3> {
         .run(Stepping::quasi_static(2), |_| {})
         .unwrap_or_else(|e| panic!("{method}: {e}"));
     summary.final_state.positions
-}
-
-/// Largest displacement difference relative to the largest displacement.
-fn relative_difference(rest: &[Vec3], a: &[Vec3], b: &[Vec3]) -> f64 {
-    let scale = rest
-        .iter()
-        .zip(a)
-        .map(|(r, x)| (x - r).norm())
-        .fold(0.0, f64::max);
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).norm())
-        .fold(0.0, f64::max);
-    diff / scale
 }
 
 fn pair(mut a: Problem, mut b: Problem, configure: impl Fn(&mut Problem)) -> f64 {

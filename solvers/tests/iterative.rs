@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{cantilever, cantilever_tet10};
+use common::{cantilever, cantilever_tet10, relative_difference};
 use isochor_mesh::{generate::ball, Vec3};
 use isochor_solvers::{
     Dirichlet, IterativeSettings, LinearSolver, Load, Material, Method, Motion, PreconditionerKind,
@@ -33,21 +33,6 @@ fn run(problem: Problem, linear: LinearSolver) -> Result<RunSummary, String> {
         .map_err(|e| e.to_string())?
         .run(Stepping::quasi_static(1), |_| {})
         .map_err(|e| e.to_string())
-}
-
-/// Largest displacement difference relative to the largest displacement.
-fn relative_difference(rest: &[Vec3], a: &[Vec3], b: &[Vec3]) -> f64 {
-    let scale = rest
-        .iter()
-        .zip(a)
-        .map(|(r, x)| (x - r).norm())
-        .fold(0.0, f64::max);
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).norm())
-        .fold(0.0, f64::max);
-    diff / scale
 }
 
 /// Both paths converge on `problem`: their positions' relative difference, and the Krylov

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{p1_box, P1Box};
+use common::{p1_box, P1Box, Rng};
 use faer::sparse::SparseColMat;
 use isochor_solvers::linear::{
     cg, diagonal, minres, relative_residual, saddle_point_diagonal, CholeskySolver, Factorization,
@@ -11,18 +11,6 @@ use isochor_solvers::linear::{
     ShiftSchedule, SparsityPattern, SymmetricLower, Triangle,
 };
 use nalgebra::{DMatrix, DVector};
-
-/// Deterministic pseudo-random numbers in [-1, 1) (xorshift).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
 
 /// Sparse copy of a dense matrix: both triangles for symmetric ones, entries with
 /// `|a| > 0` plus the diagonal.
@@ -45,11 +33,13 @@ fn sparse(a: &DMatrix<f64>) -> SparseColMat<usize, f64> {
 
 /// Random sparse-ish SPD matrix `B^T B + I` with a banded `B`.
 fn random_spd(n: usize, rng: &mut Rng) -> DMatrix<f64> {
-    let b = DMatrix::from_fn(
-        n,
-        n,
-        |i, j| if i.abs_diff(j) <= 2 { rng.next() } else { 0.0 },
-    );
+    let b = DMatrix::from_fn(n, n, |i, j| {
+        if i.abs_diff(j) <= 2 {
+            rng.uniform()
+        } else {
+            0.0
+        }
+    });
     b.transpose() * &b + DMatrix::identity(n, n)
 }
 
@@ -57,9 +47,9 @@ fn random_spd(n: usize, rng: &mut Rng) -> DMatrix<f64> {
 fn random_g(m: usize, n: usize, rng: &mut Rng) -> DMatrix<f64> {
     DMatrix::from_fn(m, n, |i, j| {
         if j == 2 * i {
-            2.0 + rng.next()
+            2.0 + rng.uniform()
         } else if (j + i) % 5 == 0 {
-            rng.next()
+            rng.uniform()
         } else {
             0.0
         }
@@ -101,7 +91,7 @@ fn cholesky_matches_dense_lu_and_reuses_the_symbolic_factorization() {
     let mut rng = Rng(7);
     let n = 40;
     let k = random_spd(n, &mut rng);
-    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n).map(|_| rng.uniform()).collect();
     let ks = sparse(&k);
     let mut solver = CholeskySolver::new(ks.symbolic()).unwrap();
     solver.factorize(ks.as_ref(), 0.0).unwrap();
@@ -151,7 +141,7 @@ fn cholesky_reports_indefinite_k_and_the_shift_schedule_cures_it() {
         .factorize_with_shifts(ks.as_ref(), &schedule)
         .unwrap();
     assert!(shift > 0.0);
-    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n).map(|_| rng.uniform()).collect();
     let x = solver.solve(&b).unwrap();
     let want = dense_solve(&(k + DMatrix::identity(n, n) * shift), &b);
     assert!(max_diff(&x, &want) < 1e-9 * max_abs(&want));
@@ -167,12 +157,12 @@ fn check_random_kkt(c_scale: f64, seed: u64) {
     let g = random_g(m, n, &mut rng);
     let c = DMatrix::from_fn(m, m, |i, j| {
         if i == j {
-            c_scale * (1.0 + rng.next().abs())
+            c_scale * (1.0 + rng.uniform().abs())
         } else {
             0.0
         }
     });
-    let b: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n + m).map(|_| rng.uniform()).collect();
     let (ks, gs, cs) = (sparse(&k), sparse(&g), sparse(&c));
     let c_opt = (c_scale > 0.0).then(|| cs.as_ref());
     // Anchor constraint i at DOF 2i (its largest G entry); the last row is free.
@@ -323,7 +313,7 @@ fn p1_box_kkt_at_zero_compliance_is_solved_with_regularization_and_refinement() 
     let (k, g, anchors) = (p1_box_k(&p), p.g, p.anchors);
     let (n, m) = (k.nrows(), g.nrows());
     let mut rng = Rng(13);
-    let truth: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let truth: Vec<f64> = (0..n + m).map(|_| rng.uniform()).collect();
     let op_k = SymmetricLower(k.as_ref());
     let op = SaddlePoint {
         k: &op_k,
@@ -488,7 +478,7 @@ fn p1_box_kkt_with_inconsistent_rhs_is_an_error_value() {
     let (k, g, anchors) = (p1_box_k(&p), p.g, p.anchors);
     let (n, m) = (k.nrows(), g.nrows());
     let mut rng = Rng(17);
-    let b: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n + m).map(|_| rng.uniform()).collect();
     let mut solver = KktSolver::new(
         k.symbolic(),
         g.symbolic(),

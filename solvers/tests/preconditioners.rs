@@ -1,23 +1,14 @@
 //! The preconditioners of the iterative path: zero-fill incomplete Cholesky against exact
 //! Cholesky, its diagonal-shift retry, and the block-diagonal saddle-point preconditioner.
 
+mod common;
+
+use common::Rng;
 use faer::sparse::SparseColMat;
 use isochor_solvers::linear::{
     cg, diagonal, minres, BlockDiagonal, CholeskySolver, IncompleteCholesky, IterativeOptions,
     Jacobi, Preconditioner, SaddlePoint, SparsityPattern, SymmetricLower, Triangle,
 };
-
-/// Deterministic pseudo-random numbers in [-1, 1) (xorshift).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
 
 /// A symmetric matrix from its lower-triangle entries `(row, col, value)`, both triangles
 /// stored.
@@ -45,13 +36,13 @@ fn tree_matrix(parent: &[usize], rng: &mut Rng) -> SparseColMat<usize, f64> {
     let mut diag = vec![0.0; n];
     let mut lower = Vec::new();
     for (j, &p) in parent.iter().enumerate() {
-        let w = 1.5 + rng.next();
+        let w = 1.5 + rng.uniform();
         lower.push((p, j, -w));
         diag[j] += w;
         diag[p] += w;
     }
     for (j, d) in diag.iter().enumerate() {
-        lower.push((j, j, d + 0.1 + 0.05 * rng.next()));
+        lower.push((j, j, d + 0.1 + 0.05 * rng.uniform()));
     }
     symmetric(n, &lower)
 }
@@ -65,7 +56,7 @@ fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
 /// `M^-1 b` by IC(0) against the exact Cholesky solve of the same matrix.
 fn ic_against_cholesky(a: &SparseColMat<usize, f64>, rng: &mut Rng) -> (f64, f64) {
     let n = a.nrows();
-    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n).map(|_| rng.uniform()).collect();
     let ic = IncompleteCholesky::new(a.as_ref()).unwrap();
     let mut z = vec![0.0; n];
     ic.apply(&b, &mut z);
@@ -85,7 +76,7 @@ fn incomplete_cholesky_is_exact_without_fill() {
     let n = 200;
     let chain: Vec<usize> = (1..n).collect();
     let tree: Vec<usize> = (0..n - 1)
-        .map(|j| j + 1 + ((rng.next() + 1.0) * 1e6) as usize % (n - 1 - j))
+        .map(|j| j + 1 + ((rng.uniform() + 1.0) * 1e6) as usize % (n - 1 - j))
         .collect();
     for (name, parent) in [("tridiagonal", chain), ("tree", tree)] {
         let a = tree_matrix(&parent, &mut rng);
@@ -118,7 +109,7 @@ fn incomplete_cholesky_drops_fill_and_beats_jacobi() {
     let a = symmetric(n, &lower);
     let (d, _) = ic_against_cholesky(&a, &mut rng);
     assert!(d > 1e-3, "IC(0) of a grid Laplacian cannot be exact: {d:e}");
-    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n).map(|_| rng.uniform()).collect();
     let options = IterativeOptions {
         tolerance: 1e-8,
         max_iterations: 10 * n,
@@ -167,7 +158,7 @@ fn block_diagonal_preconditioner_solves_a_saddle_point() {
     let g_entries: Vec<(usize, usize)> = (0..m)
         .flat_map(|i| [(i, 4 * i), (i, 4 * i + 1), (i, 4 * i + 3)])
         .collect();
-    let g_values: Vec<f64> = g_entries.iter().map(|_| rng.next()).collect();
+    let g_values: Vec<f64> = g_entries.iter().map(|_| rng.uniform()).collect();
     let g = SparsityPattern::new(m, n, &g_entries, Triangle::Full)
         .unwrap()
         .assemble(&g_values)
@@ -186,7 +177,7 @@ fn block_diagonal_preconditioner_solves_a_saddle_point() {
         first: &ic,
         second: &schur,
     };
-    let b: Vec<f64> = (0..n + m).map(|_| rng.next()).collect();
+    let b: Vec<f64> = (0..n + m).map(|_| rng.uniform()).collect();
     let mut x = vec![0.0; n + m];
     let options = IterativeOptions {
         tolerance: 1e-10,
