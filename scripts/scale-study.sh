@@ -70,7 +70,7 @@ done
 python3 - "$csv" <<'EOF'
 import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-print("\n| config | time exponent (t ~ tets^a) | memory exponent |\n|---|---|---|")
+print("\n| config | wall-time exponent (t ~ tets^a) | peak-memory exponent |\n|---|---|---|")
 for config in dict.fromkeys(r["config"] for r in rows):
     pts = [r for r in rows if r["config"] == config and int(r["tets"]) >= 10000]
     if len(pts) < 2:
