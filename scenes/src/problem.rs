@@ -598,6 +598,7 @@ pub fn settings(spec: &SolverSpec) -> Settings {
         max_iterations: spec.linear_max_iterations.unwrap_or(1000),
         preconditioner: match spec.linear_preconditioner {
             Some(PreconditionerName::Jacobi) => PreconditionerKind::Jacobi,
+            Some(PreconditionerName::Multigrid) => PreconditionerKind::Multigrid,
             Some(PreconditionerName::IncompleteCholesky) | None => {
                 PreconditionerKind::IncompleteCholesky
             }

@@ -744,6 +744,8 @@ pub enum PreconditionerName {
     Jacobi,
     /// Zero-fill incomplete Cholesky.
     IncompleteCholesky,
+    /// Smoothed-aggregation algebraic multigrid.
+    Multigrid,
 }
 
 /// Fill-reducing ordering choice.

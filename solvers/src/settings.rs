@@ -69,6 +69,9 @@ pub enum PreconditionerKind {
     /// Zero-fill incomplete Cholesky of `K`, shifted if a pivot breaks down.
     #[default]
     IncompleteCholesky,
+    /// One V-cycle of smoothed-aggregation algebraic multigrid on `K` with the rigid-body
+    /// modes as near null space.
+    Multigrid,
 }
 
 /// Limits and tolerances of the nonlinear solvers.

@@ -149,6 +149,9 @@ pub enum LinearError {
     /// An error reported by faer (allocation, index overflow, ...).
     #[error("faer: {0}")]
     Faer(String),
+    /// The multigrid hierarchy could not be built.
+    #[error("multigrid setup: {0}")]
+    Multigrid(String),
 }
 
 impl LinearError {

@@ -3,7 +3,8 @@
 //! for the saddle-point systems of eq. 21/24 (Francu et al. 2021), both under a
 //! fill-reducing [`Ordering`] (AMD or METIS nested dissection), and matrix-free
 //! CG / MINRES (sec. 8) with interchangeable preconditioners: diagonal scaling,
-//! incomplete Cholesky, and the block-diagonal saddle-point preconditioner.
+//! incomplete Cholesky, smoothed-aggregation multigrid, and the block-diagonal
+//! saddle-point preconditioner.
 //!
 //! Symmetric matrices are given with both triangles (as the element kernels emit them)
 //! or only the lower one; the factorizations read the lower triangle (`row >= col`).
@@ -23,6 +24,9 @@
 //! }
 //! ```
 
+mod aggregation;
+mod amg;
+mod chebyshev;
 mod cholesky;
 mod error;
 mod fill_reducing;
@@ -38,6 +42,8 @@ mod preconditioner;
 mod report;
 mod shift;
 
+pub use aggregation::NearNullSpace;
+pub use amg::SmoothedAggregation;
 pub use cholesky::CholeskySolver;
 pub use error::LinearError;
 pub use fill_reducing::Ordering;

@@ -2,8 +2,9 @@
 //! definite, so that diagonal scaling, incomplete Cholesky and the block-diagonal
 //! saddle-point preconditioner are interchangeable in [`super::cg`] and [`super::minres`].
 
-/// An SPD preconditioner `z = M^-1 r`.
-pub trait Preconditioner {
+/// An SPD preconditioner `z = M^-1 r`, built once per Newton iteration and shared by its
+/// solves.
+pub trait Preconditioner: Send + Sync + std::fmt::Debug {
     /// Dimension.
     fn dim(&self) -> usize;
     /// Overwrites `z` with `M^-1 r`. Callers pass slices of length [`Preconditioner::dim`].
@@ -14,6 +15,7 @@ pub trait Preconditioner {
 /// saddle-point system, `first` for the `K` block and `second` for the Schur complement
 /// (Elman, Silvester and Wathen, "Finite Elements and Fast Iterative Solvers", 2nd ed.,
 /// sec. 4.2: MINRES with `diag(P_K, S)`, `S` spectrally equivalent to `G K^-1 G^T + C`).
+#[derive(Debug)]
 pub struct BlockDiagonal<'a> {
     /// The preconditioner of the first (displacement) block.
     pub first: &'a dyn Preconditioner,

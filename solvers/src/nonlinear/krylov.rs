@@ -3,31 +3,35 @@
 
 use crate::linear::{
     cg, diagonal, minres, BlockDiagonal, IncompleteCholesky, IterativeOptions, Jacobi, LinearError,
-    LinearOperator, Preconditioner, SaddlePoint, SymmetricLower,
+    LinearOperator, NearNullSpace, Preconditioner, SaddlePoint, SmoothedAggregation,
+    SymmetricLower,
 };
 use crate::{IterativeSettings, PreconditionerKind};
 use faer::sparse::SparseColMatRef;
 
-/// The SPD preconditioner of the stiffness block `K` (lower triangle).
-fn stiffness_preconditioner(
+/// The SPD preconditioner of the stiffness block `K` (lower triangle) that `kind` names;
+/// `near_null_space` is called only by multigrid (the rigid-body modes of the free DOFs).
+pub fn stiffness_preconditioner(
     kind: PreconditionerKind,
     k: SparseColMatRef<'_, usize, f64>,
+    near_null_space: impl FnOnce() -> NearNullSpace,
 ) -> Result<Box<dyn Preconditioner>, LinearError> {
     Ok(match kind {
         PreconditionerKind::Jacobi => Box::new(Jacobi::from_diagonal(&diagonal(k))),
         PreconditionerKind::IncompleteCholesky => Box::new(IncompleteCholesky::new(k)?),
+        PreconditionerKind::Multigrid => Box::new(SmoothedAggregation::new(k, near_null_space())?),
     })
 }
 
-/// Solves `K x = b` by preconditioned CG from `x = 0` to the relative residual `tolerance`;
-/// returns `x` and the iterations.
+/// Solves `K x = b` by CG with `preconditioner` from `x = 0` to the relative residual
+/// `tolerance`; returns `x` and the iterations.
 pub fn solve_stiffness(
     settings: &IterativeSettings,
     k: SparseColMatRef<'_, usize, f64>,
+    preconditioner: &dyn Preconditioner,
     b: &[f64],
     tolerance: f64,
 ) -> Result<(Vec<f64>, usize), LinearError> {
-    let preconditioner = stiffness_preconditioner(settings.preconditioner, k)?;
     let mut x = vec![0.0; b.len()];
     let options = IterativeOptions {
         tolerance,
@@ -35,7 +39,7 @@ pub fn solve_stiffness(
     };
     let report = cg(
         &SymmetricLower(k),
-        preconditioner.as_ref(),
+        preconditioner,
         b,
         &mut x,
         options,
@@ -60,7 +64,7 @@ pub struct SaddleSystem<'a> {
 
 /// Solves the saddle-point system for `b = (f, h)` by MINRES from zero (returns the
 /// solution and the iterations) with the
-/// block-diagonal preconditioner `diag(P_K, S)`: `P_K` the stiffness preconditioner, and
+/// block-diagonal preconditioner `diag(P_K, S)`: `P_K` the stiffness preconditioner `p_k`, and
 /// `S = diag(V_i / mu + C_ii)` the lumped pressure mass matrix scaled by the shear modulus
 /// plus the compliance (Elman, Silvester and Wathen, "Finite Elements and Fast Iterative
 /// Solvers", 2nd ed., sec. 4.2 and 9.2: `G K^-1 G^T` is spectrally equivalent to
@@ -68,10 +72,10 @@ pub struct SaddleSystem<'a> {
 pub fn solve_saddle(
     settings: &IterativeSettings,
     system: &SaddleSystem<'_>,
+    p_k: &dyn Preconditioner,
     b: &[f64],
     tolerance: f64,
 ) -> Result<(Vec<f64>, usize), LinearError> {
-    let p_k = stiffness_preconditioner(settings.preconditioner, system.k)?;
     let c_diag = system.c.map(diagonal);
     let schur: Vec<f64> = system
         .row_volumes
@@ -81,7 +85,7 @@ pub fn solve_saddle(
         .collect();
     let p_s = Jacobi::from_diagonal(&schur);
     let preconditioner = BlockDiagonal {
-        first: p_k.as_ref(),
+        first: p_k,
         second: &p_s,
     };
     let k_op = SymmetricLower(system.k);

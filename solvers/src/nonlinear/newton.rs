@@ -7,7 +7,8 @@ use crate::assembly::{Evaluation, System};
 use crate::linear::{CholeskySolver, ShiftSchedule};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
-use crate::nonlinear::krylov::solve_stiffness;
+use crate::linear::NearNullSpace;
+use crate::nonlinear::krylov::{solve_stiffness, stiffness_preconditioner};
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::IterativeSettings;
 use crate::{IterationReport, SolverError, StepReport};
@@ -99,6 +100,7 @@ impl Newton {
         k: faer::sparse::SparseColMatRef<'_, usize, f64>,
         rhs: &mut [f64],
         (force, target): (f64, f64),
+        near_null_space: impl FnOnce() -> NearNullSpace,
         report: &mut StepReport,
     ) -> Result<(f64, usize), SolverError> {
         let error = |e: crate::linear::LinearError| SolverError::Linear(e.to_string());
@@ -117,8 +119,15 @@ impl Newton {
             }
             Linear::Iterative(settings, forcing) => {
                 let start = Instant::now();
+                let preconditioner =
+                    stiffness_preconditioner(settings.preconditioner, k, near_null_space)
+                        .map_err(error)?;
+                report.timings.factorization += start.elapsed();
+                let start = Instant::now();
                 let eta = forcing.next(force, target);
-                let (x, iterations) = solve_stiffness(settings, k, rhs, eta).map_err(error)?;
+                let (x, iterations) =
+                    solve_stiffness(settings, k, preconditioner.as_ref(), rhs, eta)
+                        .map_err(error)?;
                 rhs.copy_from_slice(&x);
                 report.timings.solve += start.elapsed();
                 Ok((0.0, iterations))
@@ -169,6 +178,7 @@ impl Newton {
                 k.as_ref(),
                 &mut rhs,
                 (force, target.force_tolerance),
+                || NearNullSpace::rigid_body(dofs.free(), x),
                 report,
             )?;
 

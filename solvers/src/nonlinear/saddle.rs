@@ -12,10 +12,12 @@
 //! outside the domain of the energy or the constraints.
 
 use crate::assembly::System;
-use crate::linear::{CholeskySolver, KktOptions, KktSolver, ShiftSchedule};
+use crate::linear::{
+    CholeskySolver, KktOptions, KktSolver, NearNullSpace, Preconditioner, ShiftSchedule,
+};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
-use crate::nonlinear::krylov::{solve_saddle, SaddleSystem};
+use crate::nonlinear::krylov::{solve_saddle, stiffness_preconditioner, SaddleSystem};
 use crate::nonlinear::target::{
     add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
 };
@@ -52,6 +54,8 @@ struct Iterative {
     iterations: usize,
     k: SparseColMat<usize, f64>,
     g: SparseColMat<usize, f64>,
+    /// The preconditioner of `K`, built once per Newton iteration.
+    p_k: Option<Box<dyn Preconditioner>>,
     /// The rest volume of each constraint row and the shear modulus, for the pressure block
     /// of the preconditioner.
     row_volumes: Vec<f64>,
@@ -140,6 +144,7 @@ impl SaddleNewton {
                     iterations: 0,
                     k: empty(0, 0),
                     g: empty(0, 0),
+                    p_k: None,
                     row_volumes: system.model.row_volumes.clone(),
                     mu: system.model.mu(),
                 }))
@@ -325,7 +330,8 @@ impl SaddleNewton {
                 let b = norm(&rhs_x).hypot(norm(&rhs_p));
                 state.eta = state.forcing.next(b, 0.0);
             }
-            let shift = self.factorize(k, g, report)?;
+            let free = system.model.dofs.free();
+            let shift = self.factorize(k, g, || NearNullSpace::rigid_body(free, x), report)?;
             let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
 
             let mut direction = d_fixed.clone();
@@ -431,6 +437,7 @@ impl SaddleNewton {
         &mut self,
         k: SparseColMat<usize, f64>,
         g: SparseColMat<usize, f64>,
+        near_null_space: impl FnOnce() -> NearNullSpace,
         report: &mut StepReport,
     ) -> Result<f64, SolverError> {
         let start = Instant::now();
@@ -481,6 +488,13 @@ impl SaddleNewton {
                 shift
             }
             Linear::Iterative(state) => {
+                let p_k = stiffness_preconditioner(
+                    state.settings.preconditioner,
+                    k.as_ref(),
+                    near_null_space,
+                )
+                .map_err(linear_error)?;
+                state.p_k = Some(p_k);
                 state.k = k;
                 state.g = g;
                 0.0
@@ -540,8 +554,10 @@ impl SaddleNewton {
                 };
                 let mut b = f;
                 b.extend(h);
+                let p_k = state.p_k.as_deref().ok_or(crate::linear::LinearError::NotFactorized);
                 let (mut solution, iterations) =
-                    solve_saddle(&state.settings, &saddle, &b, state.eta).map_err(linear_error)?;
+                    solve_saddle(&state.settings, &saddle, p_k.map_err(linear_error)?, &b, state.eta)
+                        .map_err(linear_error)?;
                 state.iterations += iterations;
                 let dp = solution.split_off(nf);
                 (solution, dp)
