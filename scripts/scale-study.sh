@@ -7,7 +7,8 @@
 # time per Newton iteration (wall time over iterations: includes the one-off pattern and
 # symbolic work) and the peak resident memory of the process (GNU time's maximum RSS), as
 # a Markdown table and as CSV (scale-study.csv in the current folder), and the growth
-# exponent of time and memory against tets (least squares on the log-log points of each configuration).
+# exponent of time and memory against tets (least squares on the log-log points of each configuration),
+# and with matplotlib the log-log plot scale-study.png (scripts/scale-plot.py).
 #
 # A configuration stops growing after its first run that fails, runs out of its time
 # limit (LIMIT seconds, default 1200) or needs more than MAX_RSS_GB (default 20) of memory.
@@ -82,3 +83,7 @@ for config in dict.fromkeys(r["config"] for r in rows):
         return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
     print(f"| {config} | {slope('wall_s'):.2f} | {slope('peak_rss_mb'):.2f} |")
 EOF
+
+if python3 -c "import matplotlib" 2>/dev/null; then
+    python3 "$root/scripts/scale-plot.py" "$csv" scale-study.png
+fi
