@@ -164,11 +164,13 @@ fn iterative_path_converges_on_the_singular_p1_p1_saddle_point() {
 }
 
 /// The measurements of the README's iterative-path table: the cantilever at nu = 0.4999,
-/// one load step, `standard` and `mixed-p1`, direct against CG / MINRES with each
+/// one load step, each method, direct against CG / MINRES with each
 /// preconditioner. Per run: Newton iterations, Krylov iterations per Newton iteration (the
 /// saddle path may solve twice: its second-order correction), and the
 /// linear-solve time per Newton iteration (factorization and solves). Resolutions from
-/// `ISOCHOR_STUDY_RES` (comma-separated, default `4,8,12`).
+/// `ISOCHOR_STUDY_RES` (comma-separated, default `4,8,12`), methods from
+/// `ISOCHOR_STUDY_METHODS` (default `standard,mixed-p1,zonal`), linear solvers from
+/// `ISOCHOR_STUDY_LINEAR` (names from the table, comma-separated, default all).
 #[test]
 #[ignore = "study of minutes: run with --release -- --ignored --nocapture"]
 fn iterative_path_study() {
@@ -177,10 +179,22 @@ fn iterative_path_study() {
         .split(',')
         .map(|r| r.trim().parse().expect("ISOCHOR_STUDY_RES: integers"))
         .collect();
+    let list = |key: &str, default: &str| -> Vec<String> {
+        std::env::var(key)
+            .unwrap_or_else(|_| default.into())
+            .split(',')
+            .map(|s| s.trim().to_string())
+            .collect()
+    };
+    let chosen = list("ISOCHOR_STUDY_LINEAR", "direct,Jacobi,IC(0),multigrid");
+    let methods: Vec<Method> = list("ISOCHOR_STUDY_METHODS", "standard,mixed-p1,zonal")
+        .iter()
+        .map(|m| m.parse().expect("ISOCHOR_STUDY_METHODS: method names"))
+        .collect();
     println!("| res | method | unknowns | linear | Newton its | Krylov its / Newton it | linear ms / Newton it | wall s |");
     println!("|---|---|---|---|---|---|---|---|");
     for &res in &resolutions {
-        for method in [Method::Standard, Method::MixedP1] {
+        for &method in &methods {
             for (name, linear) in [
                 ("direct", LinearSolver::Direct),
                 (
@@ -208,6 +222,9 @@ fn iterative_path_study() {
                     }),
                 ),
             ] {
+                if !chosen.iter().any(|c| c == name) {
+                    continue;
+                }
                 let problem = cantilever(res, method, 0.4999);
                 let mut sim = Simulation::new(problem, settings(linear)).unwrap();
                 let unknowns = sim.num_dofs();
