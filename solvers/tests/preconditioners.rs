@@ -222,7 +222,7 @@ fn cg_iterations(k: &SparseColMat<usize, f64>, m: &dyn Preconditioner, rng: &mut
     let mut x = vec![0.0; b.len()];
     let options = IterativeOptions {
         tolerance: 1e-8,
-        max_iterations: 5000,
+        max_iterations: 50_000,
     };
     cg(&SymmetricLower(k.as_ref()), m, &b, &mut x, options)
         .unwrap()
@@ -281,4 +281,48 @@ fn multigrid_iterations_barely_grow_under_refinement() {
         fine.0
     );
     assert!(fine.0 < fine.1, "multigrid {} vs IC(0) {} at res 8", fine.0, fine.1);
+}
+
+/// The README's multigrid table: CG to a relative residual of 1e-8 on the cantilever's `K`
+/// at rest with multigrid and with IC(0) (setup and solve times, iterations) against the
+/// sparse Cholesky factorization of the same matrix, at `nu` 0.45 and 0.4999. Resolutions
+/// from `ISOCHOR_STUDY_RES` (comma-separated, default `8,12,16`).
+#[test]
+#[ignore = "study of minutes: run with --release -- --ignored --nocapture"]
+fn multigrid_study() {
+    let resolutions: Vec<usize> = std::env::var("ISOCHOR_STUDY_RES")
+        .unwrap_or_else(|_| "8,12,16".into())
+        .split(',')
+        .map(|r| r.trim().parse().expect("ISOCHOR_STUDY_RES: integers"))
+        .collect();
+    let seconds = |start: std::time::Instant| start.elapsed().as_secs_f64();
+    println!("| nu | res | DOFs | levels | multigrid its | setup + solve (s) | IC(0) its | setup + solve (s) | Cholesky (s) |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for nu in [0.45, 0.4999] {
+        for &res in &resolutions {
+            let (k, space) = cantilever_stiffness(res, nu);
+            let mut rng = Rng(3);
+            let start = std::time::Instant::now();
+            let amg = SmoothedAggregation::new(k.as_ref(), space).unwrap();
+            let amg_setup = seconds(start);
+            let start = std::time::Instant::now();
+            let amg_its = cg_iterations(&k, &amg, &mut rng);
+            let amg_solve = seconds(start);
+            let start = std::time::Instant::now();
+            let ic = IncompleteCholesky::new(k.as_ref()).unwrap();
+            let ic_setup = seconds(start);
+            let start = std::time::Instant::now();
+            let ic_its = cg_iterations(&k, &ic, &mut rng);
+            let ic_solve = seconds(start);
+            let start = std::time::Instant::now();
+            let mut cholesky = CholeskySolver::new(k.symbolic()).unwrap();
+            cholesky.factorize(k.as_ref(), 0.0).unwrap();
+            let factorization = seconds(start);
+            println!(
+                "| {nu} | {res} | {} | {:?} | {amg_its} | {amg_setup:.2} + {amg_solve:.2} | {ic_its} | {ic_setup:.2} + {ic_solve:.2} | {factorization:.2} |",
+                k.nrows(),
+                amg.level_sizes()
+            );
+        }
+    }
 }
