@@ -1,8 +1,9 @@
 //! The iterative linear path on the cantilever at nu = 0.4999: one load step solved by
-//! `standard` (CG) and `mixed-p1` (MINRES with the block-diagonal preconditioner), both with
-//! the incomplete-Cholesky preconditioner and inexact-Newton forcing terms, at the largest
-//! resolution whose samples keep the bench under a minute on a 2-core machine (res 8: 7,776
-//! and 10,449 unknowns). Printed once per case: Newton and Krylov iterations.
+//! `standard` (CG), `mixed-p1` and `zonal` (MINRES with the block-diagonal preconditioner)
+//! with the incomplete-Cholesky or the multigrid preconditioner and inexact-Newton forcing
+//! terms, at the largest resolution whose samples keep each case near a minute on a 2-core
+//! machine (res 8: 7,776 to 10,449 unknowns). Printed once per case: Newton and Krylov
+//! iterations.
 
 #[path = "../tests/common.rs"]
 mod common;
@@ -10,15 +11,17 @@ mod common;
 use common::cantilever;
 use criterion::{criterion_group, criterion_main, Criterion};
 use isochor_solvers::{
-    IterativeSettings, LinearSolver, Method, RunSummary, Settings, Simulation, Stepping,
+    IterativeSettings, LinearSolver, Method, PreconditionerKind, RunSummary, Settings,
+    Simulation, Stepping,
 };
 
 const RES: usize = 8;
 
-fn solve(method: Method) -> RunSummary {
+fn solve(method: Method, preconditioner: PreconditionerKind) -> RunSummary {
     let settings = Settings {
         linear: LinearSolver::Iterative(IterativeSettings {
             max_iterations: 50_000,
+            preconditioner,
             ..IterativeSettings::default()
         }),
         ..Settings::default()
@@ -32,8 +35,15 @@ fn solve(method: Method) -> RunSummary {
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("iterative");
     group.sample_size(10);
-    for method in [Method::Standard, Method::MixedP1] {
-        let summary = solve(method);
+    let cases = [
+        (Method::Standard, PreconditionerKind::IncompleteCholesky),
+        (Method::Standard, PreconditionerKind::Multigrid),
+        (Method::MixedP1, PreconditionerKind::IncompleteCholesky),
+        (Method::Zonal, PreconditionerKind::IncompleteCholesky),
+        (Method::Zonal, PreconditionerKind::Multigrid),
+    ];
+    for (method, preconditioner) in cases {
+        let summary = solve(method, preconditioner);
         let krylov: usize = summary
             .reports
             .iter()
@@ -41,10 +51,12 @@ fn bench(c: &mut Criterion) {
             .map(|i| i.linear_iterations)
             .sum();
         eprintln!(
-            "res {RES} {method}: {} Newton iterations, {krylov} Krylov iterations",
+            "res {RES} {method} {preconditioner:?}: {} Newton iterations, {krylov} Krylov iterations",
             summary.newton_iterations()
         );
-        group.bench_function(format!("{method}/res{RES}"), |b| b.iter(|| solve(method)));
+        group.bench_function(format!("{method}/{preconditioner:?}/res{RES}"), |b| {
+            b.iter(|| solve(method, preconditioner))
+        });
     }
     group.finish();
 }
