@@ -11,8 +11,8 @@ mod common;
 use common::cantilever;
 use criterion::{criterion_group, criterion_main, Criterion};
 use isochor_solvers::{
-    IterativeSettings, LinearSolver, Method, PreconditionerKind, RunSummary, Settings,
-    Simulation, Stepping,
+    IterativeSettings, LinearSolver, Method, PreconditionerKind, RunSummary, Settings, Simulation,
+    Stepping,
 };
 
 const RES: usize = 8;

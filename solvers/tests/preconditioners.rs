@@ -265,7 +265,10 @@ fn multigrid_iterations_barely_grow_under_refinement() {
         let (k, space) = cantilever_stiffness(res, 0.3);
         let amg = SmoothedAggregation::new(k.as_ref(), space).unwrap();
         let ic = IncompleteCholesky::new(k.as_ref()).unwrap();
-        let (amg_its, ic_its) = (cg_iterations(&k, &amg, &mut rng), cg_iterations(&k, &ic, &mut rng));
+        let (amg_its, ic_its) = (
+            cg_iterations(&k, &amg, &mut rng),
+            cg_iterations(&k, &ic, &mut rng),
+        );
         eprintln!(
             "res {res}: {} DOFs, levels {:?}, CG iterations: multigrid {amg_its}, IC(0) {ic_its}",
             k.nrows(),
@@ -280,7 +283,12 @@ fn multigrid_iterations_barely_grow_under_refinement() {
         coarse.0,
         fine.0
     );
-    assert!(fine.0 < fine.1, "multigrid {} vs IC(0) {} at res 8", fine.0, fine.1);
+    assert!(
+        fine.0 < fine.1,
+        "multigrid {} vs IC(0) {} at res 8",
+        fine.0,
+        fine.1
+    );
 }
 
 /// The README's multigrid table: CG to a relative residual of 1e-8 on the cantilever's `K`

@@ -203,9 +203,7 @@ pub fn tentative(a: &CsMat<f64>, space: &NearNullSpace, epsilon: f64) -> Tentati
     }
     let mut modes = DMatrix::zeros(n_c, k);
     for (block, r) in coarse_rows.iter().enumerate() {
-        modes
-            .rows_mut(coarse_start[block], r.nrows())
-            .copy_from(r);
+        modes.rows_mut(coarse_start[block], r.nrows()).copy_from(r);
     }
     Tentative {
         prolongator: p.to_csr(),
@@ -255,8 +253,16 @@ mod tests {
         assert_eq!(space.node_start, vec![0, 3, 6]);
         // Vertex 1 sits at +1 along x from the centroid.
         assert_eq!(space.modes[(3, 0)], 1.0);
-        assert_eq!(space.modes[(4, 5)], 1.0, "rotation about z moves +x along +y");
-        assert_eq!(space.modes[(5, 4)], -1.0, "rotation about y moves +x along -z");
+        assert_eq!(
+            space.modes[(4, 5)],
+            1.0,
+            "rotation about z moves +x along +y"
+        );
+        assert_eq!(
+            space.modes[(5, 4)],
+            -1.0,
+            "rotation about y moves +x along -z"
+        );
         assert_eq!(space.modes[(3, 5)], 0.0);
     }
 }

@@ -52,7 +52,10 @@ impl SmoothedAggregation {
     /// ignored), with the near null space `space` on its DOFs. Errors: `k` not square or of
     /// another dimension than `space`, a non-finite entry, a non-positive diagonal entry, a
     /// coarsest matrix that is not positive definite, or coarsening that stalls.
-    pub fn new(k: SparseColMatRef<'_, usize, f64>, space: NearNullSpace) -> Result<Self, LinearError> {
+    pub fn new(
+        k: SparseColMatRef<'_, usize, f64>,
+        space: NearNullSpace,
+    ) -> Result<Self, LinearError> {
         let n = k.nrows();
         if k.ncols() != n {
             return Err(LinearError::NotSquare {

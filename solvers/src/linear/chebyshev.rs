@@ -28,11 +28,14 @@ pub fn multiply(a: &CsMat<f64>, x: &[f64], y: &mut [f64]) {
     let indptr = a.indptr();
     let indptr = indptr.raw_storage();
     let (indices, data) = (a.indices(), a.data());
-    y.par_iter_mut().enumerate().with_min_len(ROWS_PER_TASK).for_each(|(i, yi)| {
-        *yi = (indptr[i]..indptr[i + 1])
-            .map(|p| data[p] * x[indices[p]])
-            .sum();
-    });
+    y.par_iter_mut()
+        .enumerate()
+        .with_min_len(ROWS_PER_TASK)
+        .for_each(|(i, yi)| {
+            *yi = (indptr[i]..indptr[i + 1])
+                .map(|p| data[p] * x[indices[p]])
+                .sum();
+        });
 }
 
 /// The Chebyshev smoother of one level.
@@ -99,13 +102,19 @@ impl Chebyshev {
 fn spectral_radius(a: &CsMat<f64>, inverse_diagonal: &[f64]) -> f64 {
     let n = inverse_diagonal.len();
     let scale: Vec<f64> = inverse_diagonal.iter().map(|d| d.sqrt()).collect();
-    let mut v: Vec<f64> = (0..n).map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0).collect();
+    let mut v: Vec<f64> = (0..n)
+        .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
+        .collect();
     let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
     v.iter_mut().for_each(|x| *x /= norm);
     let (mut scaled, mut w) = (vec![0.0; n], vec![0.0; n]);
     let mut estimate = 0.0;
     for _ in 0..POWER_ITERATIONS {
-        scaled.iter_mut().zip(&v).zip(&scale).for_each(|((y, x), s)| *y = x * s);
+        scaled
+            .iter_mut()
+            .zip(&v)
+            .zip(&scale)
+            .for_each(|((y, x), s)| *y = x * s);
         multiply(a, &scaled, &mut w);
         w.iter_mut().zip(&scale).for_each(|(y, s)| *y *= s);
         estimate = v.iter().zip(&w).map(|(x, y)| x * y).sum();

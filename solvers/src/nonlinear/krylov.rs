@@ -11,7 +11,7 @@ use faer::sparse::SparseColMatRef;
 
 /// The SPD preconditioner of the stiffness block `K` (lower triangle) that `kind` names;
 /// `near_null_space` is called only by multigrid (the rigid-body modes of the free DOFs).
-pub fn stiffness_preconditioner(
+fn stiffness_preconditioner(
     kind: PreconditionerKind,
     k: SparseColMatRef<'_, usize, f64>,
     near_null_space: impl FnOnce() -> NearNullSpace,
@@ -21,6 +21,40 @@ pub fn stiffness_preconditioner(
         PreconditionerKind::IncompleteCholesky => Box::new(IncompleteCholesky::new(k)?),
         PreconditionerKind::Multigrid => Box::new(SmoothedAggregation::new(k, near_null_space())?),
     })
+}
+
+/// The preconditioner of `K` over the Newton iterations of a step: rebuilt at every
+/// iteration, except multigrid, whose setup costs many Krylov iterations' worth: it is built
+/// at a step's first iteration and kept for the rest of the step (a lagged preconditioner:
+/// the Krylov solvers need it SPD, not built from the current `K`).
+#[derive(Debug, Default)]
+pub struct StiffnessPreconditioner {
+    built: Option<Box<dyn Preconditioner>>,
+}
+
+impl StiffnessPreconditioner {
+    /// Builds the preconditioner `kind` names from `k`, unless a lagged one is kept.
+    pub fn update(
+        &mut self,
+        kind: PreconditionerKind,
+        k: SparseColMatRef<'_, usize, f64>,
+        near_null_space: impl FnOnce() -> NearNullSpace,
+    ) -> Result<(), LinearError> {
+        if kind != PreconditionerKind::Multigrid || self.built.is_none() {
+            self.built = Some(stiffness_preconditioner(kind, k, near_null_space)?);
+        }
+        Ok(())
+    }
+
+    /// The current preconditioner ([`LinearError::NotFactorized`] before the first update).
+    pub fn get(&self) -> Result<&dyn Preconditioner, LinearError> {
+        self.built.as_deref().ok_or(LinearError::NotFactorized)
+    }
+
+    /// Drops a kept preconditioner: the next update builds a new one (a new step).
+    pub fn new_step(&mut self) {
+        self.built = None;
+    }
 }
 
 /// Solves `K x = b` by CG with `preconditioner` from `x = 0` to the relative residual
@@ -37,13 +71,7 @@ pub fn solve_stiffness(
         tolerance,
         max_iterations: settings.max_iterations,
     };
-    let report = cg(
-        &SymmetricLower(k),
-        preconditioner,
-        b,
-        &mut x,
-        options,
-    )?;
+    let report = cg(&SymmetricLower(k), preconditioner, b, &mut x, options)?;
     Ok((x, report.iterations))
 }
 

@@ -4,11 +4,11 @@
 //! elements under `log J`) and enforces sufficient decrease (Armijo).
 
 use crate::assembly::{Evaluation, System};
+use crate::linear::NearNullSpace;
 use crate::linear::{CholeskySolver, ShiftSchedule};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
-use crate::linear::NearNullSpace;
-use crate::nonlinear::krylov::{solve_stiffness, stiffness_preconditioner};
+use crate::nonlinear::krylov::{solve_stiffness, StiffnessPreconditioner};
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
 use crate::IterativeSettings;
 use crate::{IterationReport, SolverError, StepReport};
@@ -25,7 +25,7 @@ enum Linear {
     /// Sparse Cholesky, symbolic analysis kept across steps and iterations.
     Direct(Box<CholeskySolver>),
     /// Preconditioned CG with inexact-Newton forcing terms (reset every step).
-    Iterative(IterativeSettings, Forcing),
+    Iterative(IterativeSettings, Forcing, StiffnessPreconditioner),
 }
 
 /// A Newton minimizer with its linear solver, kept across steps and iterations.
@@ -48,7 +48,11 @@ impl Newton {
                 .iterative_for(pattern.symbolic().nrows()),
         };
         let linear = match iterative {
-            Some(settings) => Linear::Iterative(settings, Forcing::new(settings.tolerance)),
+            Some(settings) => Linear::Iterative(
+                settings,
+                Forcing::new(settings.tolerance),
+                StiffnessPreconditioner::default(),
+            ),
             None => Linear::Direct(Box::new(
                 CholeskySolver::with_ordering(pattern.symbolic(), system.settings.ordering)
                     .map_err(|e| SolverError::Linear(e.to_string()))?,
@@ -117,16 +121,16 @@ impl Newton {
                 report.timings.solve += start.elapsed();
                 Ok((shift, 0))
             }
-            Linear::Iterative(settings, forcing) => {
+            Linear::Iterative(settings, forcing, preconditioner) => {
                 let start = Instant::now();
-                let preconditioner =
-                    stiffness_preconditioner(settings.preconditioner, k, near_null_space)
-                        .map_err(error)?;
+                preconditioner
+                    .update(settings.preconditioner, k, near_null_space)
+                    .map_err(error)?;
                 report.timings.factorization += start.elapsed();
                 let start = Instant::now();
                 let eta = forcing.next(force, target);
                 let (x, iterations) =
-                    solve_stiffness(settings, k, preconditioner.as_ref(), rhs, eta)
+                    solve_stiffness(settings, k, preconditioner.get().map_err(error)?, rhs, eta)
                         .map_err(error)?;
                 rhs.copy_from_slice(&x);
                 report.timings.solve += start.elapsed();
@@ -137,8 +141,9 @@ impl Newton {
 
     /// Starts a new forcing-term sequence (a new load or time step).
     pub fn restart_forcing(&mut self) {
-        if let Linear::Iterative(settings, forcing) = &mut self.linear {
+        if let Linear::Iterative(settings, forcing, preconditioner) = &mut self.linear {
             *forcing = Forcing::new(settings.tolerance);
+            preconditioner.new_step();
         }
     }
 

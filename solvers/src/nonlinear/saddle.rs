@@ -12,12 +12,10 @@
 //! outside the domain of the energy or the constraints.
 
 use crate::assembly::System;
-use crate::linear::{
-    CholeskySolver, KktOptions, KktSolver, NearNullSpace, Preconditioner, ShiftSchedule,
-};
+use crate::linear::{CholeskySolver, KktOptions, KktSolver, NearNullSpace, ShiftSchedule};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
-use crate::nonlinear::krylov::{solve_saddle, stiffness_preconditioner, SaddleSystem};
+use crate::nonlinear::krylov::{solve_saddle, SaddleSystem, StiffnessPreconditioner};
 use crate::nonlinear::target::{
     add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
 };
@@ -54,8 +52,8 @@ struct Iterative {
     iterations: usize,
     k: SparseColMat<usize, f64>,
     g: SparseColMat<usize, f64>,
-    /// The preconditioner of `K`, built once per Newton iteration.
-    p_k: Option<Box<dyn Preconditioner>>,
+    /// The preconditioner of `K`.
+    p_k: StiffnessPreconditioner,
     /// The rest volume of each constraint row and the shear modulus, for the pressure block
     /// of the preconditioner.
     row_volumes: Vec<f64>,
@@ -144,7 +142,7 @@ impl SaddleNewton {
                     iterations: 0,
                     k: empty(0, 0),
                     g: empty(0, 0),
-                    p_k: None,
+                    p_k: StiffnessPreconditioner::default(),
                     row_volumes: system.model.row_volumes.clone(),
                     mu: system.model.mu(),
                 }))
@@ -295,6 +293,7 @@ impl SaddleNewton {
         let mut nonmonotone_budget = WATCHDOG_STEPS;
         if let Linear::Iterative(state) = &mut self.linear {
             state.forcing = Forcing::new(state.settings.tolerance);
+            state.p_k.new_step();
         }
         for _ in 0..settings.max_iterations {
             let Linearized {
@@ -488,13 +487,10 @@ impl SaddleNewton {
                 shift
             }
             Linear::Iterative(state) => {
-                let p_k = stiffness_preconditioner(
-                    state.settings.preconditioner,
-                    k.as_ref(),
-                    near_null_space,
-                )
-                .map_err(linear_error)?;
-                state.p_k = Some(p_k);
+                state
+                    .p_k
+                    .update(state.settings.preconditioner, k.as_ref(), near_null_space)
+                    .map_err(linear_error)?;
                 state.k = k;
                 state.g = g;
                 0.0
@@ -554,9 +550,9 @@ impl SaddleNewton {
                 };
                 let mut b = f;
                 b.extend(h);
-                let p_k = state.p_k.as_deref().ok_or(crate::linear::LinearError::NotFactorized);
+                let p_k = state.p_k.get().map_err(linear_error)?;
                 let (mut solution, iterations) =
-                    solve_saddle(&state.settings, &saddle, p_k.map_err(linear_error)?, &b, state.eta)
+                    solve_saddle(&state.settings, &saddle, p_k, &b, state.eta)
                         .map_err(linear_error)?;
                 state.iterations += iterations;
                 let dp = solution.split_off(nf);
