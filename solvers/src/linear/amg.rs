@@ -7,9 +7,9 @@
 //! smoothed prolongator `P = (I - omega D^-1 A) P_t` with `omega = 4 / (3 rho(D^-1 A))`, and
 //! the Galerkin coarse matrix `A_c = P^T A P`; the coarsest level is factorized densely.
 //! The cycle smooths with the same Chebyshev polynomial before and after the coarse
-//! correction (`chebyshev.rs`), so `M^-1` is symmetric; it is positive definite because
-//! the smoother's error propagator has spectral radius below one in the energy norm on the
-//! estimated spectrum (the estimate is padded by 10%).
+//! correction (`chebyshev.rs`), so `M^-1` is symmetric; for SPD `A` it is positive definite
+//! because the smoother converges in the energy norm (its interval reaches Gershgorin's bound
+//! on the spectrum).
 //!
 //! Unlike IC(0), whose Krylov iterations grow like `1 / h`, the V-cycle's iteration count
 //! stays nearly constant under refinement (`solvers/tests/preconditioners.rs` measures both).

@@ -1,9 +1,13 @@
 //! The Chebyshev polynomial smoother of the multigrid cycle (Adams, Brezina, Hu and
 //! Tuminaro 2003, "Parallel multigrid smoothing: polynomial versus Gauss-Seidel"): a few
-//! steps of Chebyshev iteration on `D^-1 A` aimed at the upper part `[rho / 30, 1.1 rho]` of
-//! its spectrum (`rho` its spectral radius), which multigrid leaves to the coarse levels
-//! below. A polynomial in `D^-1 A` times `D^-1` is symmetric, so the same smoother before
-//! and after the coarse correction keeps the cycle symmetric, as CG needs.
+//! steps of Chebyshev iteration on `D^-1 A` aimed at the upper part `[rho / 30, g]` of its
+//! spectrum (`rho` the spectral radius estimated by power iteration, `g` Gershgorin's bound),
+//! which multigrid leaves to the coarse levels below. The residual polynomial is below one in
+//! magnitude on all of `(0, g]`, and `g` bounds the spectrum for certain (an estimate of
+//! `rho` alone may fall short of it and amplify the top modes), so for SPD `A` the smoother
+//! converges in the energy norm. A polynomial in `D^-1 A` times `D^-1` is symmetric, so the
+//! same smoother before and after the coarse correction keeps the cycle symmetric, as CG
+//! needs.
 
 use rayon::prelude::*;
 use sprs::CsMat;
@@ -11,9 +15,8 @@ use sprs::CsMat;
 /// Polynomial degree (matrix-vector products per smoothing).
 const DEGREE: usize = 3;
 
-/// The smoothed part of the spectrum, `[rho / RATIO, rho * SAFETY]`.
+/// The lower end of the smoothed part of the spectrum, `rho / RATIO`.
 const RATIO: f64 = 30.0;
-const SAFETY: f64 = 1.1;
 
 /// Power iterations for the spectral radius of `D^-1 A`.
 const POWER_ITERATIONS: usize = 15;
@@ -42,6 +45,8 @@ pub fn multiply(a: &CsMat<f64>, x: &[f64], y: &mut [f64]) {
 #[derive(Debug, Clone)]
 pub struct Chebyshev {
     inverse_diagonal: Vec<f64>,
+    /// The estimated spectral radius of `D^-1 A`.
+    rho: f64,
     /// Centre and half-width of the smoothed interval.
     theta: f64,
     delta: f64,
@@ -52,18 +57,19 @@ impl Chebyshev {
     /// radius `rho` of `D^-1 A` estimated by power iteration.
     pub fn new(a: &CsMat<f64>, inverse_diagonal: Vec<f64>) -> Self {
         let rho = spectral_radius(a, &inverse_diagonal);
-        let (upper, lower) = (SAFETY * rho, rho / RATIO);
+        let upper = gershgorin(a, &inverse_diagonal).max(rho);
+        let lower = rho / RATIO;
         Chebyshev {
             inverse_diagonal,
+            rho,
             theta: 0.5 * (upper + lower),
             delta: 0.5 * (upper - lower),
         }
     }
 
-    /// The estimated spectral radius of `D^-1 A` (the upper end of the interval over the
-    /// safety factor).
+    /// The estimated spectral radius of `D^-1 A`.
     pub fn spectral_radius(&self) -> f64 {
-        (self.theta + self.delta) / SAFETY
+        self.rho
     }
 
     /// `DEGREE` Chebyshev steps on `A x = b` from the given `x` (Saad, "Iterative Methods
@@ -95,6 +101,14 @@ impl Chebyshev {
             rho = next;
         }
     }
+}
+
+/// Gershgorin's bound on the spectrum of `D^-1 A`: `max_i sum_j |A_ij| / A_ii`.
+fn gershgorin(a: &CsMat<f64>, inverse_diagonal: &[f64]) -> f64 {
+    a.outer_iterator()
+        .zip(inverse_diagonal)
+        .map(|(row, inv)| row.iter().map(|(_, v)| v.abs()).sum::<f64>() * inv)
+        .fold(0.0, f64::max)
 }
 
 /// Spectral radius of `D^-1 A`: power iteration with Rayleigh quotients on the similar,
