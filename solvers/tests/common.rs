@@ -185,3 +185,18 @@ impl Rng {
         (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 }
+
+/// The comma-separated list of the environment variable `key` (else `default`), parsed: how
+/// the ignored studies take their resolutions and cases.
+#[allow(dead_code)]
+pub fn study_list<T: std::str::FromStr>(key: &str, default: &str) -> Vec<T> {
+    std::env::var(key)
+        .unwrap_or_else(|_| default.into())
+        .split(',')
+        .map(|item| {
+            item.trim()
+                .parse()
+                .unwrap_or_else(|_| panic!("{key}: cannot parse '{item}'"))
+        })
+        .collect()
+}

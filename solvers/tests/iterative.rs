@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{cantilever, cantilever_tet10, relative_difference};
+use common::{cantilever, cantilever_tet10, relative_difference, study_list};
 use isochor_mesh::{generate::ball, Vec3};
 use isochor_solvers::{
     Dirichlet, IterativeSettings, LinearSolver, Load, Material, Method, Motion, PreconditionerKind,
@@ -174,23 +174,9 @@ fn iterative_path_converges_on_the_singular_p1_p1_saddle_point() {
 #[test]
 #[ignore = "study of minutes: run with --release -- --ignored --nocapture"]
 fn iterative_path_study() {
-    let resolutions: Vec<usize> = std::env::var("ISOCHOR_STUDY_RES")
-        .unwrap_or_else(|_| "4,8,12".into())
-        .split(',')
-        .map(|r| r.trim().parse().expect("ISOCHOR_STUDY_RES: integers"))
-        .collect();
-    let list = |key: &str, default: &str| -> Vec<String> {
-        std::env::var(key)
-            .unwrap_or_else(|_| default.into())
-            .split(',')
-            .map(|s| s.trim().to_string())
-            .collect()
-    };
-    let chosen = list("ISOCHOR_STUDY_LINEAR", "direct,Jacobi,IC(0),multigrid");
-    let methods: Vec<Method> = list("ISOCHOR_STUDY_METHODS", "standard,mixed-p1,zonal")
-        .iter()
-        .map(|m| m.parse().expect("ISOCHOR_STUDY_METHODS: method names"))
-        .collect();
+    let resolutions: Vec<usize> = study_list("ISOCHOR_STUDY_RES", "4,8,12");
+    let chosen: Vec<String> = study_list("ISOCHOR_STUDY_LINEAR", "direct,Jacobi,IC(0),multigrid");
+    let methods: Vec<Method> = study_list("ISOCHOR_STUDY_METHODS", "standard,mixed-p1,zonal");
     println!("| res | method | unknowns | linear | Newton its | Krylov its / Newton it | linear ms / Newton it | wall s |");
     println!("|---|---|---|---|---|---|---|---|");
     for &res in &resolutions {

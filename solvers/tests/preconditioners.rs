@@ -298,11 +298,7 @@ fn multigrid_iterations_barely_grow_under_refinement() {
 #[test]
 #[ignore = "study of minutes: run with --release -- --ignored --nocapture"]
 fn multigrid_study() {
-    let resolutions: Vec<usize> = std::env::var("ISOCHOR_STUDY_RES")
-        .unwrap_or_else(|_| "8,12,16".into())
-        .split(',')
-        .map(|r| r.trim().parse().expect("ISOCHOR_STUDY_RES: integers"))
-        .collect();
+    let resolutions: Vec<usize> = common::study_list("ISOCHOR_STUDY_RES", "8,12,16");
     let seconds = |start: std::time::Instant| start.elapsed().as_secs_f64();
     println!("| nu | res | DOFs | levels | multigrid its | setup + solve (s) | IC(0) its | setup + solve (s) | Cholesky (s) |");
     println!("|---|---|---|---|---|---|---|---|---|");

@@ -56,14 +56,7 @@ impl SmoothedAggregation {
         k: SparseColMatRef<'_, usize, f64>,
         space: NearNullSpace,
     ) -> Result<Self, LinearError> {
-        let n = k.nrows();
-        if k.ncols() != n {
-            return Err(LinearError::NotSquare {
-                what: "multigrid matrix",
-                nrows: n,
-                ncols: k.ncols(),
-            });
-        }
+        let n = LinearError::square("multigrid matrix", k.nrows(), k.ncols())?;
         if space.dim() != n {
             return Err(LinearError::DimensionMismatch {
                 what: "multigrid near null space rows",

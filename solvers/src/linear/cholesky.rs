@@ -47,14 +47,7 @@ impl CholeskySolver {
         ordering: Ordering,
     ) -> Result<Self, LinearError> {
         let start = Instant::now();
-        let n = k.nrows();
-        if k.ncols() != n {
-            return Err(LinearError::NotSquare {
-                what: "K",
-                nrows: n,
-                ncols: k.ncols(),
-            });
-        }
+        let n = LinearError::square("K", k.nrows(), k.ncols())?;
         let mut pairs = entry_pairs(k, "K (uncompressed storage)")?;
         pairs.extend((0..n).map(|i| (i, i)));
         let lower = SparsityPattern::new(n, n, &pairs, Triangle::Lower)?;

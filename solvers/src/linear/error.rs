@@ -170,3 +170,14 @@ impl From<faer::sparse::FaerError> for LinearError {
         Self::Faer(format!("{e:?}"))
     }
 }
+
+impl LinearError {
+    /// The dimension of a square `nrows x ncols` matrix, else [`LinearError::NotSquare`].
+    pub(crate) fn square(what: &'static str, nrows: usize, ncols: usize) -> Result<usize, Self> {
+        if nrows == ncols {
+            Ok(nrows)
+        } else {
+            Err(LinearError::NotSquare { what, nrows, ncols })
+        }
+    }
+}

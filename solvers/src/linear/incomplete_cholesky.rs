@@ -33,14 +33,7 @@ impl IncompleteCholesky {
     /// ([`LinearError::NotPositiveDefinite`]: no shift of `diag(A)` can help), or every
     /// shift failing.
     pub fn new(a: SparseColMatRef<'_, usize, f64>) -> Result<Self, LinearError> {
-        let n = a.nrows();
-        if a.ncols() != n {
-            return Err(LinearError::NotSquare {
-                what: "incomplete Cholesky matrix",
-                nrows: n,
-                ncols: a.ncols(),
-            });
-        }
+        let n = LinearError::square("incomplete Cholesky matrix", a.nrows(), a.ncols())?;
         let rows = a.symbolic().row_idx();
         let vals = a.val();
         let mut col_ptr = Vec::with_capacity(n + 1);

@@ -42,14 +42,7 @@ fn check_dims(
     b: &[f64],
     x: &[f64],
 ) -> Result<(), LinearError> {
-    let n = a.nrows();
-    if a.ncols() != n {
-        return Err(LinearError::NotSquare {
-            what: "operator",
-            nrows: n,
-            ncols: a.ncols(),
-        });
-    }
+    let n = LinearError::square("operator", a.nrows(), a.ncols())?;
     for (what, got) in [
         ("right-hand side", b.len()),
         ("initial guess", x.len()),

@@ -159,15 +159,8 @@ impl KktSolver {
         options: KktOptions,
     ) -> Result<Self, LinearError> {
         let start = Instant::now();
-        let n = k.nrows();
+        let n = LinearError::square("K", k.nrows(), k.ncols())?;
         let m = g.nrows();
-        if k.ncols() != n {
-            return Err(LinearError::NotSquare {
-                what: "K",
-                nrows: n,
-                ncols: k.ncols(),
-            });
-        }
         if g.ncols() != n {
             return Err(LinearError::DimensionMismatch {
                 what: "columns of G",
