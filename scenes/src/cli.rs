@@ -94,8 +94,9 @@ pub enum Command {
         /// Repeat over the values of a parameter, e.g. nu=0.49,0.499,0.4999.
         #[arg(long, value_name = "KEY=V1,V2,...")]
         sweep: Option<String>,
-        /// Write compare.csv, compare.md, compare.json, compare.png (with a numeric sweep)
-        /// and compare-residuals.png to this folder (default: compare-SCENE).
+        /// Write compare.csv, compare.md, compare.json, compare.png (with a numeric sweep),
+        /// compare-residuals.png and, for dynamic scenes, compare-energy.png to this folder
+        /// (default: compare-SCENE).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// Print exactly one JSON object on stdout.

@@ -222,6 +222,9 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
                 plots::plot_sweep(&dir.path().join(SWEEP_PLOT), &comparison)?;
             }
             plots::plot_residuals(&dir.path().join(RESIDUALS_PLOT), &comparison)?;
+            if comparison.is_dynamic() {
+                plots::plot_energies(&dir.path().join(ENERGY_PLOT), &comparison)?;
+            }
             Some(dir.commit()?)
         }
         None => None,
@@ -233,8 +236,17 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
 pub const SWEEP_PLOT: &str = "compare.png";
 /// The plot of the Newton residuals against the accumulated iterations.
 pub const RESIDUALS_PLOT: &str = "compare-residuals.png";
+/// The plot of the energies and the volume change against time (dynamic scenes).
+pub const ENERGY_PLOT: &str = "compare-energy.png";
 
 impl Comparison {
+    /// Whether any run stepped in time (implicit Euler): then the energies are plotted.
+    pub fn is_dynamic(&self) -> bool {
+        self.rows
+            .iter()
+            .any(|row| row.result.as_ref().is_ok_and(|r| r.dynamic))
+    }
+
     /// The probes of the table (every probe but `volume_change`, which has its own column).
     pub fn probe_names(&self) -> Vec<String> {
         let names: BTreeSet<String> = self
@@ -470,6 +482,7 @@ pub fn describe_output(path: &Path) -> String {
         "compare.json",
         SWEEP_PLOT,
         RESIDUALS_PLOT,
+        ENERGY_PLOT,
     ]
     .iter()
     .map(|f| path.join(f))

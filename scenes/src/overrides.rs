@@ -45,6 +45,8 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("increments", "stepping.increments"),
     ("first_increment", "stepping.first_increment"),
     ("min_increment", "stepping.min_increment"),
+    ("volume_projection", "stepping.volume_projection"),
+    ("volume_recovery", "stepping.volume_recovery"),
     ("max_iterations", "solver.max_iterations"),
     ("force_tolerance", "solver.force_tolerance"),
     ("constraint_tolerance", "solver.constraint_tolerance"),

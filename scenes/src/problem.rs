@@ -5,6 +5,7 @@ use crate::checks;
 use crate::scene::{
     CurveSpec, KappaName, LinearName, MaterialSpec, MeshSpec, ModelName, MotionSpec, ObstacleSpec,
     OrderingName, PreconditionerName, Scene, SolverSpec, SteppingSpec, ZonalEnergyName, ZoneKind,
+    DEFAULT_VOLUME_RECOVERY,
 };
 use crate::selection::Selections;
 use crate::SceneError;
@@ -15,7 +16,7 @@ use isochor_solvers::linear::Ordering;
 use isochor_solvers::{
     Adaptive, Curve, Dirichlet, Epidermis, IterativeSettings, Kappa, LinearSolver, Load, Material,
     MaterialModel, Method, Motion, Obstacle, PreconditionerKind, Problem, Region, ScheduledLoad,
-    Settings, Shape, StepControl, Stepping, ZonalEnergy,
+    Settings, Shape, StepControl, Stepping, VolumeProjection, ZonalEnergy,
 };
 use std::path::Path;
 
@@ -111,7 +112,10 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
         loads,
         obstacles,
     };
-    let settings = settings(&scene.solver);
+    let settings = Settings {
+        volume_projection: volume_projection(&scene.stepping),
+        ..settings(&scene.solver)
+    };
     checks::supports(scene, &problem)?;
     checks::obstacles_clear(scene, &problem, settings.contact_tolerance)?;
     Ok(Built {
@@ -552,7 +556,25 @@ pub fn stepping(spec: &SteppingSpec) -> Stepping {
                 }
             },
         },
-        SteppingSpec::Dynamic { dt, frames } => Stepping::ImplicitEuler { dt, frames },
+        SteppingSpec::Dynamic { dt, frames, .. } => Stepping::ImplicitEuler { dt, frames },
+    }
+}
+
+/// The solver's volume projection of the scene's stepping (none in quasi-static stepping).
+pub fn volume_projection(spec: &SteppingSpec) -> VolumeProjection {
+    match spec {
+        SteppingSpec::Dynamic {
+            volume_projection: Some(name),
+            volume_recovery,
+            ..
+        } => match name.as_str() {
+            "one-ring" => VolumeProjection::OneRing {
+                recovery: volume_recovery.unwrap_or(DEFAULT_VOLUME_RECOVERY),
+            },
+            "global-rescale" => VolumeProjection::GlobalRescale,
+            _ => VolumeProjection::None,
+        },
+        _ => VolumeProjection::None,
     }
 }
 

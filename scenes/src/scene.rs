@@ -659,14 +659,31 @@ pub enum SteppingSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         min_increment: Option<f64>,
     },
-    /// Implicit Euler with time step `dt` (s) for `frames` frames.
+    /// Implicit Euler with time step `dt` (s) for `frames` frames, each step followed by the
+    /// volume projection `volume_projection` (the baselines of Fig. 8 of Sheen et al. 2021,
+    /// see `isochor_solvers::VolumeProjection`).
     Dynamic {
         /// Time step (s).
         dt: f64,
         /// Number of steps (each a frame).
         frames: usize,
+        /// `none` (default), `one-ring` (Irving et al. 2007) or `global-rescale` (a string
+        /// checked when the scene is loaded, so that a bad value names its key).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        volume_projection: Option<String>,
+        /// `one-ring` only: the largest change of a one ring's volume per step, relative to
+        /// its rest volume (default [`DEFAULT_VOLUME_RECOVERY`]).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        volume_recovery: Option<f64>,
     },
 }
+
+/// The one-ring projection's volume recovery per step when the scene gives none: 1% of a
+/// one ring's rest volume (a choice of ours; Sheen et al. 2021 do not give theirs).
+pub const DEFAULT_VOLUME_RECOVERY: f64 = 0.01;
+
+/// The values of `stepping.volume_projection`.
+pub const VOLUME_PROJECTIONS: [&str; 3] = ["none", "one-ring", "global-rescale"];
 
 /// Newton limits and tolerances (defaults: the solver's).
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
@@ -1294,7 +1311,38 @@ impl Scene {
                     ));
                 }
             }
-            SteppingSpec::Dynamic { dt, frames } => {
+            SteppingSpec::Dynamic {
+                dt,
+                frames,
+                ref volume_projection,
+                volume_recovery,
+            } => {
+                if let Some(other) = volume_projection
+                    .as_deref()
+                    .filter(|p| !VOLUME_PROJECTIONS.contains(p))
+                {
+                    return Err(bad(
+                        "stepping.volume_projection",
+                        format!(
+                            "unknown value '{other}' (valid: {})",
+                            VOLUME_PROJECTIONS.join(", ")
+                        ),
+                    ));
+                }
+                if let Some(r) = volume_recovery {
+                    if volume_projection.as_deref() != Some("one-ring") {
+                        return Err(bad(
+                            "stepping.volume_recovery",
+                            "applies to volume_projection = \"one-ring\" only".into(),
+                        ));
+                    }
+                    if !(r > 0.0 && r <= 1.0) {
+                        return Err(bad(
+                            "stepping.volume_recovery",
+                            format!("{r} must lie in (0, 1]"),
+                        ));
+                    }
+                }
                 if frames == 0 {
                     return Err(bad(
                         "stepping.frames",

@@ -415,3 +415,41 @@ fn plots_are_png_files_written_where_said() {
     assert_eq!(png_size(&out.join("compare-residuals.png")), (1000, 500));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A comparison of dynamic runs also writes compare-energy.png: three 500-pixel panels (total
+/// energy, potential energy, volume change against time); a static one does not.
+#[test]
+fn dynamic_comparisons_plot_the_energies_against_time() {
+    let dir = scratch("energy");
+    let out = dir.join("out");
+    let args = [
+        "compare",
+        "dynamic-cube",
+        "--variants",
+        "zonal,global-rescale",
+        "--set",
+        "res=2",
+        "--set",
+        "frames=3",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = isochor(&args, &dir);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(png_size(&out.join("compare-energy.png")), (1000, 1500));
+    let statics = dir.join("statics");
+    let args = [
+        "compare",
+        "cantilever",
+        "--methods",
+        "standard",
+        "--set",
+        "res=1",
+        "--out",
+        statics.to_str().unwrap(),
+    ];
+    let o = isochor(&args, &dir);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!statics.join("compare-energy.png").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

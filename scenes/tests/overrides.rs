@@ -10,7 +10,7 @@ use isochor_scenes::scene::{PreviewField, VtuEncodingName};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
     Epidermis, Kappa, LinearSolver, Load, MaterialModel, Method, Simulation, StepControl, Stepping,
-    ZonalEnergy,
+    VolumeProjection, ZonalEnergy,
 };
 
 /// One flat key: the scene and overrides it needs first, a value that differs from the
@@ -301,6 +301,24 @@ const CASES: &[Case] = &[
         value: "0.004",
         reached: |_, b| matches!(b.stepping, Stepping::ImplicitEuler { dt, .. } if dt == 0.004),
         bad: "-0.01",
+    },
+    Case {
+        key: "volume_projection",
+        scene: DYNAMIC,
+        setup: &[],
+        value: "global-rescale",
+        reached: |_, b| b.settings.volume_projection == VolumeProjection::GlobalRescale,
+        bad: "sideways",
+    },
+    Case {
+        key: "volume_recovery",
+        scene: DYNAMIC,
+        setup: &["volume_projection=one-ring"],
+        value: "0.05",
+        reached: |_, b| {
+            b.settings.volume_projection == VolumeProjection::OneRing { recovery: 0.05 }
+        },
+        bad: "0",
     },
     Case {
         key: "max_iterations",

@@ -50,7 +50,7 @@ pub use settings::{
 };
 pub use simulation::{
     Adaptive, Checkpoint, Energies, Frame, Linearizer, Matrices, NewtonSystem, Progress,
-    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping,
+    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping, VolumeProjection,
 };
 pub use simulation::{IterationReport, StepReport, Timings};
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].

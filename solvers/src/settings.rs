@@ -1,6 +1,7 @@
 //! Solver settings: Newton limits, tolerances and the linear solver choice.
 
 use crate::linear::Ordering;
+use crate::VolumeProjection;
 
 /// How linear systems are solved.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -108,6 +109,9 @@ pub struct Settings {
     /// Refused in quasi-static stepping (whose steps must be equilibria) and for `dual`
     /// (whose `max_iterations` counts primal iterations per dual iteration).
     pub accept_unconverged: bool,
+    /// The volume correction after each implicit Euler step (none by default): the
+    /// baselines of Fig. 8 of Sheen et al. 2021. Refused in quasi-static stepping.
+    pub volume_projection: VolumeProjection,
 }
 
 impl Default for Settings {
@@ -125,6 +129,7 @@ impl Default for Settings {
             contact_tolerance: 1e-6,
             max_contact_iterations: 30,
             accept_unconverged: false,
+            volume_projection: VolumeProjection::None,
         }
     }
 }

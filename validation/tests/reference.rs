@@ -74,7 +74,7 @@ impl Bounds {
         let mut per_frame = AMPLIFICATION * settings.force_tolerance;
         let frames = match scene.stepping {
             SteppingSpec::QuasiStatic { .. } => 1.0,
-            SteppingSpec::Dynamic { dt, frames } => {
+            SteppingSpec::Dynamic { dt, frames, .. } => {
                 let g = scene
                     .loads
                     .gravity

@@ -6,10 +6,12 @@
 //!   incompressibility).
 //! - `compare-residuals.png`: the Newton force residual against the iterations accumulated
 //!   over the steps, one line per run (Fig. 7 of Francu et al. 2021).
+//! - `compare-energy.png` (dynamic scenes): the total and the potential energy and the
+//!   volume change against time, one line per run (Fig. 8 of Sheen et al. 2021).
 
 use super::Comparison;
 use crate::output::{finish_plot, plot_error, range, register_font, tick};
-use crate::result::RunResult;
+use crate::result::{RunResult, StepRecord};
 use crate::SceneError;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
@@ -290,4 +292,80 @@ pub fn plot_residuals(path: &Path, comparison: &Comparison) -> Result<(), SceneE
         !runs.is_empty(),
         path,
     )
+}
+
+/// One per-frame series of a run against time.
+type Series = fn(&StepRecord) -> f64;
+
+/// The total energy, the potential energy and the volume change (%) of every run against
+/// time, one panel each, one color per run (Fig. 8 of Sheen et al. 2021 plots the energy).
+pub fn plot_energies(path: &Path, comparison: &Comparison) -> Result<(), SceneError> {
+    register_font();
+    let panels: [(&str, Series); 3] = [
+        ("total energy (J)", StepRecord::total_energy),
+        ("potential energy (J)", StepRecord::potential_energy),
+        ("volume change (%)", |s| 100.0 * s.volume_change),
+    ];
+    let runs: Vec<(String, &RunResult)> = comparison
+        .rows
+        .iter()
+        .filter_map(|row| {
+            let r = row.result.as_ref().ok()?;
+            let name = match (&comparison.sweep_key, &row.sweep_value) {
+                (Some(key), Some(v)) => format!("{}, {key}={v}", row.label),
+                _ => row.label.clone(),
+            };
+            Some((name, r))
+        })
+        .collect();
+    let end = runs
+        .iter()
+        .flat_map(|(_, r)| r.history.last().map(|s| s.t))
+        .fold(0.0, f64::max);
+    let root = BitMapBackend::new(path, (SIZE.0, SIZE.1 * panels.len() as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+    for ((title, value), area) in panels.iter().zip(root.split_evenly((panels.len(), 1))) {
+        let series = |r: &RunResult| -> Vec<(f64, f64)> {
+            r.history.iter().map(|s| (s.t, value(s))).collect()
+        };
+        let (lo, hi) = range(runs.iter().flat_map(|(_, r)| series(r)).map(|p| p.1));
+        let mut chart = ChartBuilder::on(&area)
+            .caption(
+                format!(
+                    "{}: {title} (as Fig. 8 of Sheen et al. 2021)",
+                    comparison.scene
+                ),
+                ("sans-serif", 22),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(90)
+            .build_cartesian_2d(0.0..end.max(f64::MIN_POSITIVE), lo..hi)
+            .map_err(|e| plot_error(path, e))?;
+        chart
+            .configure_mesh()
+            .x_desc("time (s)")
+            .y_desc(*title)
+            .y_label_formatter(&|v| format!("{v:.3e}"))
+            .draw()
+            .map_err(|e| plot_error(path, e))?;
+        for (k, (name, r)) in runs.iter().enumerate() {
+            let color = Palette99::pick(k).to_rgba();
+            chart
+                .draw_series(LineSeries::new(series(r), color.stroke_width(2)))
+                .map_err(|e| plot_error(path, e))?
+                .label(name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_error(path, e))?;
+    }
+    root.present().map_err(|e| plot_error(path, e))
 }

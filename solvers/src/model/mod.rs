@@ -81,7 +81,10 @@ const CONTACT_PENALTY: f64 = 100.0;
 /// The rest volume measured by each row of `constraints`: by Euler's theorem for the
 /// degree-3 homogeneous volume, `(G(X) X)_i = 3 V_i` for both the linear and the
 /// logarithmic measure.
-fn row_volumes(constraints: &dyn ConstraintSet, rest: &[Vec3]) -> Result<Vec<f64>, SolverError> {
+pub(crate) fn row_volumes(
+    constraints: &dyn ConstraintSet,
+    rest: &[Vec3],
+) -> Result<Vec<f64>, SolverError> {
     let pattern = constraints.jacobian_pattern();
     let mut values = vec![0.0; pattern.len()];
     constraints.jacobian_values(rest, &mut values)?;

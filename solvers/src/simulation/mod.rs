@@ -8,6 +8,7 @@ use crate::nonlinear::saddle::SaddleNewton;
 use crate::nonlinear::target::{norm, StepTarget};
 
 mod matrices;
+mod projection;
 mod report;
 mod stepper;
 
@@ -15,6 +16,8 @@ use crate::terms::{EnergyTerm, Inertia};
 use crate::{LoadLevel, Method, Problem, Regions, Settings, SolverError};
 use faer::sparse::SparseColMat;
 pub use matrices::Matrices;
+use projection::Projector;
+pub use projection::VolumeProjection;
 pub use report::{IterationReport, StepReport, Timings};
 use stepper::Stepper;
 pub use stepper::{Adaptive, Progress, StepControl};
@@ -748,6 +751,22 @@ impl Simulation {
             );
             return Err(fail(e, 0, &self.state, &reports));
         }
+        if self.settings.volume_projection != VolumeProjection::None && dt.is_none() {
+            let e = SolverError::InvalidProblem(
+                "a volume projection applies to implicit Euler only: it corrects the state after each time step".into(),
+            );
+            return Err(fail(e, 0, &self.state, &reports));
+        }
+        let projector = match Projector::new(
+            self.settings.volume_projection,
+            &self.model.mesh,
+            &self.model.masses,
+            &self.model.dofs,
+            self.settings.ordering,
+        ) {
+            Ok(p) => p,
+            Err(e) => return Err(fail(e, 0, &self.state, &reports)),
+        };
         let force_tolerance = match self.force_scale() {
             Ok(scale) => self.settings.force_tolerance * scale,
             Err(e) => return Err(fail(e, 0, &self.state, &reports)),
@@ -859,7 +878,7 @@ impl Simulation {
                 }
             }
             reports.push(report);
-            let velocities = match dt {
+            let mut velocities = match dt {
                 Some(_) => x
                     .iter()
                     .zip(&self.state.positions)
@@ -867,6 +886,11 @@ impl Simulation {
                     .collect(),
                 None => self.state.velocities.clone(),
             };
+            if let Err(e) =
+                projector.apply(&self.model.mesh, &mut x, &mut velocities, attempt.increment)
+            {
+                return Err(fail(e, step, &self.state, &reports));
+            }
             self.state = State {
                 positions: x,
                 velocities,
@@ -979,7 +1003,7 @@ fn check_settings(s: &Settings) -> Result<(), SolverError> {
     if s.max_contact_iterations == 0 {
         return bad("max_contact_iterations must be at least 1");
     }
-    Ok(())
+    s.volume_projection.validate()
 }
 
 fn check_stepping(stepping: Stepping) -> Result<(), SolverError> {
