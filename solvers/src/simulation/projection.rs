@@ -106,7 +106,7 @@ pub struct Projector {
 enum Kind {
     None,
     OneRing {
-        constraints: NodalConstraints,
+        constraints: Box<NodalConstraints>,
         /// `V0_i` per vertex.
         rest: Vec<f64>,
         recovery: f64,
@@ -150,7 +150,7 @@ impl Projector {
                     .map(|v| 4.0 * v)
                     .collect();
                 Kind::OneRing {
-                    constraints,
+                    constraints: Box::new(constraints),
                     rest,
                     recovery,
                 }
