@@ -92,7 +92,9 @@ pub fn reduced(name: &str) -> Option<&'static [&'static str]> {
         "resting-block" => &["res=2", "steps=1"],
         "stretch-cube" | "twist-cube" => &["res=2", "steps=2"],
         "spine-arm-dynamics" => &["res=1", "frames=3"],
-        "band" => &["res=1", "steps=2"],
+        // A milder squeeze (the ring's hole from 125 to 115 mm, not 96 mm): the full one
+        // needs many cut steps on the coarsest torso.
+        "band" => &["res=1", "steps=2", "obstacles.0.radius_change=-0.01"],
         _ => return None,
     };
     Some(sets)

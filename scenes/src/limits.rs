@@ -190,8 +190,8 @@ fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
         MeshSpec::Torso { res } => {
             let r = *res as f64;
             (
-                (8.0 * r + 1.0).powi(2) * (4.0 * r + 1.0),
-                1440.0 * r.powi(3),
+                (8.0 * r + 1.0) * (4.0 * r + 1.0) * (11.0 * r + 1.0),
+                2016.0 * r.powi(3),
             )
         }
         MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),

@@ -209,10 +209,11 @@ pub enum MeshSpec {
     },
     /// A torso on the tops of two legs (Sheen et al. 2021, Figs. 1 and 4; shape ours): 0.34 m
     /// wide at the hips, 0.45 m tall, the waist at z = 0.34 m, rounded sections
-    /// (`isochor_mesh::generate::torso`, `1440 res^3` tets), groups `legs` (the legs' cut
+    /// (`isochor_mesh::generate::torso`, `2016 res^3` tets), groups `legs` (the legs' cut
     /// faces, z = 0) and `top` (the cut at the chest).
     Torso {
-        /// Resolution: cells per 4 cm or so (8 res across the hips).
+        /// Resolution: cells about 4 cm wide at 1 (8 res across the hips), 2 cm high at the
+        /// waist.
         res: usize,
     },
     /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).

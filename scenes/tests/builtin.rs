@@ -634,22 +634,16 @@ fn no_zones_with_lambda_zero_is_refused() {
     assert!(e.contains("material.lambda") && e.contains("none"), "{e}");
 }
 
-/// The band of Figs. 1 and 4 of Sheen et al. 2021 (reduced: 1,440 tets, 2 steps): under
-/// the ring that shrinks to 80% of the waist's radius, ours keeps every painted zone and the
-/// whole body at their volume to the solver's constraint tolerance (each zone is one
-/// constraint row: `|V_z / V_z0 - 1| <= tol`), squeezes the waist in by the ring's travel and
-/// pushes tissue out above or below it; the unconstrained neo-Hookean at nu = 0.4545 loses
-/// volume, at nu = 0.499 less; no variant enters the ring beyond the contact tolerance.
+/// The band of Figs. 1 and 4 of Sheen et al. 2021 (reduced: 2,016 tets, 2 steps, the ring's
+/// hole shrinking from 125 to 115 mm): ours keeps every painted zone and the whole body at
+/// their volume to the solver's constraint tolerance (each zone is one constraint row:
+/// `|V_z / V_z0 - 1| <= tol`) and squeezes the waist in; next to the band (4 cm above and
+/// below its centre) its surface stays further out than the unconstrained neo-Hookean's at
+/// nu = 0.4545, which loses volume instead, more than at nu = 0.499; no variant enters the
+/// ring beyond the contact tolerance.
 #[test]
 fn band_zones_keep_their_volume_under_the_band() {
     let tol = constraint_tolerance();
-    let zones = |r: &RunResult| -> Vec<(String, f64)> {
-        r.probes
-            .iter()
-            .filter(|(k, _)| k.starts_with("zone_"))
-            .map(|(k, v)| (k.clone(), *v))
-            .collect()
-    };
     let ours = run("band", "ours", &[]);
     let unconstrained = run("band", "neo-hookean-0.4545", &[]);
     let locked = run("band", "neo-hookean-0.499", &[]);
@@ -665,16 +659,22 @@ fn band_zones_keep_their_volume_under_the_band() {
         let contact = Settings::default().contact_tolerance * (hi - lo).norm();
         assert!(r.probes["max_penetration"] <= contact, "{:?}", r.probes);
     }
-    assert_eq!(zones(&ours).len(), 7);
-    for (zone, change) in zones(&ours) {
+    let zones: Vec<(&String, &f64)> = ours
+        .probes
+        .iter()
+        .filter(|(k, _)| k.starts_with("zone_"))
+        .collect();
+    assert_eq!(zones.len(), 7);
+    for (zone, change) in zones {
         assert!(change.abs() <= tol, "ours, {zone}: {change:e}");
     }
-    // Under the band the waist is pushed in; some of its tissue goes above or below it.
     assert!(ours.probes["radius_under"] < 0.0, "{:?}", ours.probes);
+    let beside = |r: &RunResult| r.probes["radius_above"] + r.probes["radius_below"];
     assert!(
-        ours.probes["radius_above"].max(ours.probes["radius_below"]) > 0.0,
-        "{:?}",
-        ours.probes
+        beside(&ours) > beside(&unconstrained),
+        "{} {}",
+        beside(&ours),
+        beside(&unconstrained)
     );
     let body = |r: &RunResult| r.probes["zone_6_body"];
     assert!(

@@ -19,7 +19,7 @@
 //! | [`cushion`] `res` | `768 res^3` (res 2: 6,144; a pad with a flat chamber) | 0.18 |
 //! | [`bubble`] `res` | `552 res^3` (res 2: 4,416; a chamber under a membrane) | 0.18 |
 //! | [`finger`] `res` | `1494 res^3` (res 2: 11,952; five chambers joined by a channel) | 0.12 |
-//! | [`torso`] `res` | `1440 res^3` (res 2: 11,520; a torso on the tops of two legs, mapped like the cylinder) | 0.051 at res 1, 0.033 at res 2 |
+//! | [`torso`] `res` | `2016 res^3` (res 2: 16,128; a torso on the tops of two legs, mapped like the cylinder) | 0.040 at res 1, 0.033 at res 2 |
 //!
 //! The curved generators also give their true surface for
 //! [`crate::ElementMesh::quadratic_on_surface`]: [`cylinder_surface`] (cylinder and puck),

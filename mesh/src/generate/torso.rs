@@ -35,8 +35,10 @@ const GAP: f64 = 0.25;
 /// Along the grid's y in `[-1, 1]` (back to front).
 const Y_SEGMENTS: [(f64, usize); 1] = [(2.0, 4)];
 
-/// Along z: the legs up to the crotch, the body above (m, cells at res 1).
-const Z_SEGMENTS: [(f64, usize); 2] = [(TORSO_CROTCH, 2), (TORSO_HEIGHT - TORSO_CROTCH, 6)];
+/// Along z (m, cells at res 1): the legs up to the crotch, hips and belly up to 0.3 m, the
+/// waist finer (2 cm cells from 0.3 to 0.38 m: a ring squeezing it meets several rows of
+/// vertices, which contact holds, and cannot slip between them), the chest.
+const Z_SEGMENTS: [(f64, usize); 4] = [(TORSO_CROTCH, 2), (0.18, 3), (0.08, 4), (0.07, 2)];
 
 /// A horizontal section of the body: half-width `a` (x), half-depth `b` (y), and how far the
 /// belly bulges forward of the ellipse at the front centre (all m).
@@ -111,12 +113,13 @@ fn place(u: f64, v: f64, z: f64) -> Vec3 {
 /// round) at [`TORSO_WAIST`], cut at the chest (z = 0.45 m). The body's axis is z through the
 /// origin; x is left to right.
 ///
-/// A grid of `8 res x 4 res x 8 res` hexes, Kuhn-split with the split reflected so that every
-/// mapped corner hex has its diagonal through the corner, without the `2 res x 4 res x 2 res`
-/// hexes of the crotch gap: `1440 res^3` tets (res 1: 1,440; res 2: 11,520; res 3: 38,880),
-/// worst quality 0.051 at res 1, 0.033 at res 2 and 0.020 at res 3 (see [`TetMesh::quality`]:
+/// A grid of `8 res x 4 res x 11 res` hexes (cells about 4 cm across at res 1, 2 cm high
+/// around the waist), Kuhn-split with the split reflected so that every mapped corner hex has
+/// its diagonal through the corner, without the `2 res x 4 res x 2 res` hexes of the crotch
+/// gap: `2016 res^3` tets (res 1: 2,016; res 2: 16,128; res 3: 54,432),
+/// worst quality 0.040 at res 1, 0.033 at res 2 and 0.019 at res 3 (see [`TetMesh::quality`]:
 /// the corner hexes of the mapped squares flatten as `res` grows, as in [`super::cylinder`];
-/// with an unreflected split they would carry tets of 0.013, 0.002 and 0.0009).
+/// with an unreflected split they would carry tets of 0.015, 0.003 and 0.001).
 ///
 /// Groups (surfaces): `legs` (both legs' cut faces, z = 0), `top` (the cut at the chest).
 ///
@@ -156,7 +159,7 @@ pub fn torso(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
         .iter()
         .map(|g| place(g.x, g.y, g.z))
         .collect();
-    let nz = 8 * res as isize;
+    let nz = 11 * res as isize;
     let groups = vec![
         carved.group("legs", 1, |c| c[2] < 0),
         carved.group("top", 2, |c| c[2] == nz),
@@ -173,13 +176,13 @@ mod tests {
     /// The torso: tets positive without re-orientation, a closed surface enclosing the mesh's
     /// volume, the groups on its cut planes, its side wall on the analytic surface (every
     /// side vertex above the crotch lies on its section's curve), the waist narrower than
-    /// hips and chest, and no flat tet at the mapped corners: the reflected split gives 0.051
-    /// at res 1 and 0.033 at res 2, the plain Kuhn split 0.013 and 0.002 (measured).
+    /// hips and chest, and no flat tet at the mapped corners: the reflected split gives 0.040
+    /// at res 1 and 0.033 at res 2, the plain Kuhn split 0.015 and 0.003 (measured).
     #[test]
     fn torso_is_a_rounded_body_on_two_legs() {
         for res in [1, 2] {
             let (mesh, groups) = torso(res).unwrap();
-            assert_eq!(mesh.num_tets(), 1440 * res.pow(3));
+            assert_eq!(mesh.num_tets(), 2016 * res.pow(3));
             check_groups(&mesh, &groups);
             let quality = mesh.worst_quality();
             assert!(quality > 0.025, "res {res}: {quality}");
