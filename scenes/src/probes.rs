@@ -1,9 +1,9 @@
 //! Probes: named scalars measured on a state (the final one of a run), the numbers the
 //! papers' tables and figures report.
 
+use crate::problem::build_zones;
 use crate::result::StepRecord;
 use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
-use crate::problem::build_zones;
 use crate::selection::Selections;
 use crate::SceneError;
 use isochor_mesh::probes::{displacement_at, enclosed_volume_ratio, volume_change, volume_ratio};

@@ -465,7 +465,10 @@ fn shrinking_ring_squeezes_a_cylinder_without_penetrating() {
     assert!(!waist.is_empty());
     for &v in &waist {
         let radius = x[v].xy().norm();
-        assert!((radius - 0.04).abs() <= tol, "vertex {v} at radius {radius}");
+        assert!(
+            (radius - 0.04).abs() <= tol,
+            "vertex {v} at radius {radius}"
+        );
     }
 }
 

@@ -45,14 +45,25 @@ fn shape() -> impl Strategy<Value = Shape> {
             radius
         }),
         (vec3(), unit(), 0.4..1.0f64, 0.1..0.3f64).prop_map(|(center, axis, radius, tube)| {
-            Shape::Ring { center, axis, radius, tube }
+            Shape::Ring {
+                center,
+                axis,
+                radius,
+                tube,
+            }
         }),
     ]
 }
 
 /// Distance from the axis of a ring at parameter `t`, and from its tube's centre circle.
 fn ring_radii(o: &Obstacle, x: &Vec3, t: f64) -> Option<(f64, f64)> {
-    let Shape::Ring { center, axis, radius, .. } = o.shape else {
+    let Shape::Ring {
+        center,
+        axis,
+        radius,
+        ..
+    } = o.shape
+    else {
         return None;
     };
     let a = axis.normalize();

@@ -51,17 +51,55 @@ pub(crate) struct Section {
 
 /// `(z, section)` from the crotch to the top: hips, belly, waist, chest.
 const KNOTS: [(f64, Section); 5] = [
-    (TORSO_CROTCH, Section { a: 0.165, b: 0.105, belly: 0.0 }),
-    (0.20, Section { a: 0.17, b: 0.11, belly: 0.01 }),
-    (0.27, Section { a: 0.15, b: 0.105, belly: 0.035 }),
-    (TORSO_WAIST, Section { a: 0.12, b: 0.105, belly: 0.01 }),
-    (TORSO_HEIGHT, Section { a: 0.145, b: 0.11, belly: 0.0 }),
+    (
+        TORSO_CROTCH,
+        Section {
+            a: 0.165,
+            b: 0.105,
+            belly: 0.0,
+        },
+    ),
+    (
+        0.20,
+        Section {
+            a: 0.17,
+            b: 0.11,
+            belly: 0.01,
+        },
+    ),
+    (
+        0.27,
+        Section {
+            a: 0.15,
+            b: 0.105,
+            belly: 0.035,
+        },
+    ),
+    (
+        TORSO_WAIST,
+        Section {
+            a: 0.12,
+            b: 0.105,
+            belly: 0.01,
+        },
+    ),
+    (
+        TORSO_HEIGHT,
+        Section {
+            a: 0.145,
+            b: 0.11,
+            belly: 0.0,
+        },
+    ),
 ];
 
 /// The body's section at height `z` (clamped to the knots): cosine easing between knots, so
 /// the profile is C1 with a level tangent at every knot.
 pub(crate) fn section(z: f64) -> Section {
-    let i = KNOTS[1..].iter().position(|k| z <= k.0).unwrap_or(KNOTS.len() - 2);
+    let i = KNOTS[1..]
+        .iter()
+        .position(|k| z <= k.0)
+        .unwrap_or(KNOTS.len() - 2);
     let ((z0, s0), (z1, s1)) = (KNOTS[i], KNOTS[i + 1]);
     let t = ((z - z0) / (z1 - z0)).clamp(0.0, 1.0);
     let w = 0.5 - 0.5 * (std::f64::consts::PI * t).cos();
@@ -100,11 +138,7 @@ fn place(u: f64, v: f64, z: f64) -> Vec3 {
     let t = z / TORSO_CROTCH;
     let s = t * t * (3.0 - 2.0 * t);
     let top = body(TORSO_CROTCH);
-    Vec3::new(
-        leg.0 + s * (top.0 - leg.0),
-        leg.1 + s * (top.1 - leg.1),
-        z,
-    )
+    Vec3::new(leg.0 + s * (top.0 - leg.0), leg.1 + s * (top.1 - leg.1), z)
 }
 
 /// A torso `0.34 m` wide at the hips and `0.45 m` tall, standing on the cut tops of two legs
@@ -198,9 +232,9 @@ mod tests {
             }
             // The legs' cut is two disks: no face crosses the gap.
             let legs = &groups.get("legs").unwrap().faces;
-            assert!(legs
+            assert!(legs.iter().all(|f| f
                 .iter()
-                .all(|f| f.iter().all(|&v| x[v].x.abs() >= LEG_OFFSET - LEG_RADIUS - 1e-12)));
+                .all(|&v| x[v].x.abs() >= LEG_OFFSET - LEG_RADIUS - 1e-12)));
             let mut side = 0;
             for &v in boundary.vertices() {
                 let p = x[v];

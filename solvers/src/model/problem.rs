@@ -730,7 +730,12 @@ fn ring(r: Vec3, axis: Vec3, big: f64, tube: f64) -> (f64, Vec3, nalgebra::Matri
     let w = r - axis * axis.dot(&r);
     let rho = w.norm();
     let (rho_hat, bend) = if rho <= tiny * big {
-        (axis.cross(&Vec3::x()).try_normalize(tiny).unwrap_or_else(|| axis.cross(&Vec3::y()).normalize()), 0.0)
+        (
+            axis.cross(&Vec3::x())
+                .try_normalize(tiny)
+                .unwrap_or_else(|| axis.cross(&Vec3::y()).normalize()),
+            0.0,
+        )
     } else {
         (w / rho, big / rho)
     };
