@@ -88,6 +88,7 @@ pub fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Resu
                 ObstacleSpec::HalfSpace { .. } => "half-space",
                 ObstacleSpec::Sphere { .. } => "sphere",
                 ObstacleSpec::Cylinder { .. } => "cylinder",
+                ObstacleSpec::Ring { .. } => "ring",
             };
             return Err(SceneError::Invalid {
                 origin: format!("scene {}", scene.name),

@@ -189,6 +189,13 @@ fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
                 1494.0 * r.powi(3),
             )
         }
+        MeshSpec::Torso { res } => {
+            let r = *res as f64;
+            (
+                (8.0 * r + 1.0) * (4.0 * r + 1.0) * (11.0 * r + 1.0),
+                2016.0 * r.powi(3),
+            )
+        }
         MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
         MeshSpec::File { path } => {
             let (nodes, elements) = file_counts(path)?;
@@ -364,7 +371,8 @@ fn mesh_key(spec: &MeshSpec) -> (&'static str, String) {
         | MeshSpec::Spine { res }
         | MeshSpec::Cushion { res }
         | MeshSpec::Bubble { res }
-        | MeshSpec::Finger { res } => ("mesh.res", format!("res = {res}")),
+        | MeshSpec::Finger { res }
+        | MeshSpec::Torso { res } => ("mesh.res", format!("res = {res}")),
         MeshSpec::Explicit { .. } => ("mesh.tets", "the explicit mesh".to_string()),
         MeshSpec::File { path } => ("mesh.path", format!("the mesh file {}", path.display())),
     }

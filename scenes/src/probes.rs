@@ -1,6 +1,7 @@
 //! Probes: named scalars measured on a state (the final one of a run), the numbers the
 //! papers' tables and figures report.
 
+use crate::problem::build_zones;
 use crate::result::StepRecord;
 use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
 use crate::selection::Selections;
@@ -39,7 +40,7 @@ pub fn evaluate(
         .probes
         .iter()
         .map(|(name, spec)| {
-            let value = probe(spec, input, &selections).map_err(|e| e.named(name))?;
+            let value = probe(scene, spec, input, &selections).map_err(|e| e.named(name))?;
             Ok((name.clone(), value))
         })
         .collect()
@@ -57,7 +58,7 @@ pub fn evaluate_one(
         name: name.to_string(),
         message: "the scene has no such probe".into(),
     })?;
-    probe(spec, input, selections).map_err(|e| e.named(name))
+    probe(scene, spec, input, selections).map_err(|e| e.named(name))
 }
 
 enum ProbeError {
@@ -90,6 +91,7 @@ fn over_run(input: &ProbeInput<'_>, value: impl Fn(&StepRecord) -> f64) -> f64 {
 }
 
 fn probe(
+    scene: &Scene,
     spec: &ProbeSpec,
     input: &ProbeInput<'_>,
     selections: &Selections<'_>,
@@ -144,6 +146,16 @@ fn probe(
                 None => (0..mesh.num_elements()).collect(),
             };
             volume_ratio(mesh, x, &elements).map_err(message)?
+        }
+        ProbeSpec::ZoneVolumeChange { zone } => {
+            let zones = build_zones(scene, mesh.corners(), selections)?;
+            let tets = zones.iter().nth(*zone).ok_or_else(|| {
+                ProbeError::Message(format!(
+                    "zone {zone} does not exist: the scene has {} zones",
+                    zones.len()
+                ))
+            })?;
+            volume_ratio(mesh, x, tets).map_err(message)? - 1.0
         }
         ProbeSpec::ChamberVolumeRatio { selection } => {
             enclosed_volume_ratio(mesh, x, &selections.faces(selection)?).map_err(message)?
@@ -402,6 +414,71 @@ mod tests {
             close(values["farthest"], (Vec3::repeat(1.0) + t).norm()),
             "{values:?}"
         );
+    }
+
+    /// A zone-volume probe reads the zones the scene paints, whatever the method: a 2 x 2 x 2
+    /// cube painted bottom (zone 0) and top (zone 1) half, its top layer stretched to twice
+    /// its height (piecewise linear, so every tet's volume is exact): the bottom zone keeps
+    /// its volume, the top one doubles it; a zone past the last is an error naming the count.
+    #[test]
+    fn zone_volume_change_reads_the_painted_zones() {
+        let text = |zone: usize| {
+            format!(
+                r#"
+            name = "cube"
+            method = "standard"
+            [mesh]
+            generator = "box"
+            min = [0.0, 0.0, 0.0]
+            max = [1.0, 1.0, 1.0]
+            res = 2
+            [material]
+            young = 1e5
+            nu = 0.3
+            [selections.bottom]
+            box = {{ min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 0.5] }}
+            surface = true
+            [selections.top]
+            box = {{ min = [0.0, 0.0, 0.5], max = [1.0, 1.0, 1.0] }}
+            surface = true
+            [zones]
+            kind = "painted"
+            paint = ["bottom", "top"]
+            [stepping]
+            mode = "quasi-static"
+            steps = 1
+            [probes.zone]
+            kind = "zone-volume-change"
+            zone = {zone}
+            "#
+            )
+        };
+        let change = |zone: usize| {
+            let scene = Scene::from_toml_str(&text(zone), "test").unwrap();
+            let mesh = crate::problem::build(&scene).unwrap().problem.mesh;
+            let stretched: Vec<Vec3> = mesh
+                .nodes()
+                .iter()
+                .map(|p| Vec3::new(p.x, p.y, p.z.max(2.0 * p.z - 0.5)))
+                .collect();
+            evaluate(
+                &scene,
+                &ProbeInput {
+                    mesh: &mesh,
+                    positions: &stretched,
+                    tet_pressures: &[],
+                    constraint_residual: 0.0,
+                    energies: Energies::default(),
+                    kappa: None,
+                    history: &[],
+                },
+            )
+            .map(|values| values["zone"])
+        };
+        assert!(change(0).unwrap().abs() <= 4.0 * f64::EPSILON);
+        assert!((change(1).unwrap() - 1.0).abs() <= 4.0 * f64::EPSILON);
+        let error = change(2).unwrap_err().to_string();
+        assert!(error.contains("2 zones"), "{error}");
     }
 
     #[test]

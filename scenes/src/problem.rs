@@ -142,7 +142,7 @@ fn curve(spec: &Option<CurveSpec>, key: &str) -> Result<Option<Curve>, SceneErro
 
 /// The solver's obstacle number `index` (its shape checked when the simulation is built).
 fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
-    let (shape, translate, points) = match *spec {
+    let (shape, translate, radius_change, points) = match *spec {
         ObstacleSpec::HalfSpace {
             point,
             normal,
@@ -154,12 +154,14 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
                 normal: vec3(normal),
             },
             translate,
+            0.0,
             curve,
         ),
         ObstacleSpec::Sphere {
             center,
             radius,
             translate,
+            radius_change,
             ref curve,
         } => (
             Shape::Sphere {
@@ -167,6 +169,7 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
                 radius,
             },
             translate,
+            radius_change,
             curve,
         ),
         ObstacleSpec::Cylinder {
@@ -174,6 +177,7 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
             axis,
             radius,
             translate,
+            radius_change,
             ref curve,
         } => (
             Shape::Cylinder {
@@ -182,12 +186,33 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
                 radius,
             },
             translate,
+            radius_change,
+            curve,
+        ),
+        ObstacleSpec::Ring {
+            center,
+            axis,
+            radius,
+            tube,
+            translate,
+            radius_change,
+            ref curve,
+        } => (
+            Shape::Ring {
+                center: vec3(center),
+                axis: vec3(axis),
+                radius,
+                tube,
+            },
+            translate,
+            radius_change,
             curve,
         ),
     };
     Ok(Obstacle {
         shape,
         translate: vec3(translate),
+        radius_change,
         curve: curve(points, &format!("obstacles.{index}.curve"))?,
     })
 }
@@ -245,6 +270,7 @@ pub fn build_mesh(spec: &MeshSpec, element: TetElement) -> Result<ElementMesh, S
         MeshSpec::Cushion { res } => (generate::cushion(*res)?.0, None),
         MeshSpec::Bubble { res } => (generate::bubble(*res)?.0, None),
         MeshSpec::Finger { res } => (generate::finger(*res)?.0, None),
+        MeshSpec::Torso { res } => (generate::torso(*res)?.0, None),
         MeshSpec::Ball {
             radius,
             res,
@@ -510,7 +536,8 @@ fn motion(spec: &MotionSpec) -> Motion {
     }
 }
 
-fn build_zones(
+/// The zones of the scene's `[zones]` on `mesh` (one global zone if absent).
+pub(crate) fn build_zones(
     scene: &Scene,
     mesh: &TetMesh,
     selections: &Selections<'_>,

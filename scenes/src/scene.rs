@@ -207,6 +207,15 @@ pub enum MeshSpec {
         /// Resolution: cells across a chamber wall.
         res: usize,
     },
+    /// A torso on the tops of two legs (Sheen et al. 2021, Figs. 1 and 4; shape ours): 0.34 m
+    /// wide at the hips, 0.45 m tall, the waist at z = 0.34 m, rounded sections
+    /// (`isochor_mesh::generate::torso`, `2016 res^3` tets), groups `legs` (the legs' cut
+    /// faces, z = 0) and `top` (the cut at the chest).
+    Torso {
+        /// Resolution: cells about 4 cm wide at 1 (8 res across the hips), 2 cm high at the
+        /// waist.
+        res: usize,
+    },
     /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
     Explicit {
         /// Vertex positions.
@@ -396,7 +405,7 @@ pub struct SelectionSpec {
     pub vertices: Option<Vec<usize>>,
     /// A named group of the mesh, by name (or by number if unnamed): a Gmsh physical group or
     /// TetGen region of the mesh file, or a group the generator names (spine, cushion, bubble,
-    /// finger). A surface group selects its triangles and their vertices, a volume group its
+    /// finger, torso). A surface group selects its triangles and their vertices, a volume group its
     /// tets and their vertices (with `surface`, its tets' boundary faces and their vertices).
     pub physical: Option<String>,
     /// Geometric tolerance (default: 1e-6 times the mesh's bounding-box diagonal).
@@ -530,8 +539,9 @@ pub struct LoadsSpec {
     pub pressure: Vec<PressureSpec>,
 }
 
-/// A rigid obstacle, translated by `translate` over the stepping (quasi-static load
-/// parameter or `time / duration`), e.g. `{ shape = "half-space" }` for the ground `z = 0`.
+/// A rigid obstacle, translated by `translate` (and a round one's radius changed by
+/// `radius_change`) over the stepping (quasi-static load parameter or `time / duration`),
+/// e.g. `{ shape = "half-space" }` for the ground `z = 0`.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "shape", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum ObstacleSpec {
@@ -560,6 +570,9 @@ pub enum ObstacleSpec {
         /// Displacement at the end of the run (default none).
         #[serde(default)]
         translate: Vector,
+        /// Change of the radius at the end of the run (default none).
+        #[serde(default, skip_serializing_if = "is_zero")]
+        radius_change: f64,
         /// The motion over the run (default: the fraction of the run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         curve: Option<CurveSpec>,
@@ -575,10 +588,40 @@ pub enum ObstacleSpec {
         /// Displacement at the end of the run (default none).
         #[serde(default)]
         translate: Vector,
+        /// Change of the radius at the end of the run (default none).
+        #[serde(default, skip_serializing_if = "is_zero")]
+        radius_change: f64,
         /// The motion over the run (default: the fraction of the run).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         curve: Option<CurveSpec>,
     },
+    /// A solid torus around the axis through `center` along `axis`: a ring (a tight band)
+    /// whose hole, of radius `radius - tube`, a body passes through; `radius_change` moves the
+    /// major radius, so a negative one tightens the band.
+    Ring {
+        /// The ring's centre.
+        center: Vector,
+        /// Direction of the axis (default `+z`).
+        #[serde(default = "z_axis")]
+        axis: Vector,
+        /// Major radius, from the axis to the tube's centre circle.
+        radius: f64,
+        /// The tube's radius.
+        tube: f64,
+        /// Displacement at the end of the run (default none).
+        #[serde(default)]
+        translate: Vector,
+        /// Change of the major radius at the end of the run (default none).
+        #[serde(default, skip_serializing_if = "is_zero")]
+        radius_change: f64,
+        /// The motion over the run (default: the fraction of the run).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        curve: Option<CurveSpec>,
+    },
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// A dead traction (Pa) on the boundary faces of a selection.
@@ -819,6 +862,13 @@ pub enum ProbeSpec {
     VolumeRatio {
         /// The selection (all tets if none).
         selection: Option<String>,
+    },
+    /// Deformed/rest volume minus one of zone `zone` (counted from 0) of the scene's
+    /// `[zones]`: the volume the zonal method constrains, measured the same way whatever the
+    /// method (the zones are built from the scene even when the method ignores them).
+    ZoneVolumeChange {
+        /// The zone's index in `[zones]` (for `painted`, the index in `paint`).
+        zone: usize,
     },
     /// Smallest deformed/rest volume ratio of a tet.
     MinVolumeRatio,

@@ -1,11 +1,12 @@
 //! Frictionless contact against rigid obstacles (augmented Lagrangian with projected
 //! multiplier updates, sec. 8.3 of Francu et al. 2021): a block resting on the ground, a
-//! ball bouncing off it, a block squeezed between cylinders.
+//! ball bouncing off it, a block squeezed between cylinders, a cylinder squeezed by a
+//! shrinking ring.
 
 mod common;
 
 use common::plane;
-use isochor_mesh::generate::{ball, box_grid};
+use isochor_mesh::generate::{ball, box_grid, cylinder};
 use isochor_mesh::{BoundarySurface, TetMesh, Vec3};
 use isochor_solvers::{
     Dirichlet, Load, Material, Method, Motion, Obstacle, Problem, Settings, Shape, Simulation,
@@ -213,6 +214,7 @@ fn receding_ground_releases_every_contact() {
             normal: Vec3::z(),
         },
         translate: Vec3::new(0.0, 0.0, -4e-3),
+        radius_change: 0.0,
         curve: None,
     };
     let top = plane(&mesh, 2, 0.1);
@@ -363,6 +365,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
             radius: 0.05,
         },
         translate: Vec3::new(0.0, 0.0, dz),
+        radius_change: 0.0,
         curve: None,
     };
     let obstacles = vec![cylinder(-0.05, 0.01), cylinder(0.15, -0.01)];
@@ -410,6 +413,65 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
     );
 }
 
+/// A cylinder (radius 50 mm, 100 mm tall, its base clamped) through a ring (tube 10 mm)
+/// whose hole shrinks from 52 to 40 mm at mid-height: no vertex ends inside the ring by more
+/// than the contact tolerance, complementarity holds at every boundary vertex, and every
+/// surface vertex of the ring's plane has been pushed in to the hole's final radius (to the
+/// tolerance: in contact, it cannot lie further in; pushed, it lies no further out).
+#[test]
+fn shrinking_ring_squeezes_a_cylinder_without_penetrating() {
+    let mesh = cylinder(0.05, 0.1, 2).unwrap();
+    let tol = tolerance(&mesh);
+    let ring = Obstacle {
+        shape: Shape::Ring {
+            center: Vec3::new(0.0, 0.0, 0.05),
+            axis: Vec3::z(),
+            radius: 0.062,
+            tube: 0.01,
+        },
+        translate: Vec3::zeros(),
+        radius_change: -0.012,
+        curve: None,
+    };
+    let waist: Vec<usize> = BoundarySurface::new(&mesh)
+        .unwrap()
+        .vertices()
+        .iter()
+        .copied()
+        .filter(|&v| (mesh.positions()[v].z - 0.05).abs() < 1e-12)
+        .collect();
+    let problem = Problem {
+        mesh: mesh.clone().into(),
+        method: Method::Standard,
+        material: Material::from_young_poisson(100e3, 0.45, 1000.0).unwrap(),
+        regions: Vec::new(),
+        zones: None,
+        dirichlet: vec![Dirichlet {
+            nodes: plane(&mesh, 2, 0.0),
+            axes: [true; 3],
+            motion: Motion::Fixed,
+            curve: None,
+        }],
+        loads: Vec::new(),
+        obstacles: vec![ring.clone()],
+    };
+    let mut sim = Simulation::new(problem, Settings::default()).unwrap();
+    let summary = sim.run(Stepping::quasi_static(2), |_| {}).unwrap();
+    let last = summary.reports.last().unwrap();
+    assert!(last.contact.max_penetration <= tol);
+    let x = &summary.final_state.positions;
+    let pairs = assert_complementarity(final_pairs(&sim, &[ring], x).into_iter(), tol, "ring");
+    assert!(pairs >= waist.len(), "{pairs} pairs in contact");
+    assert!(!waist.is_empty());
+    for &v in &waist {
+        let radius = x[v].xy().norm();
+        assert!(
+            (radius - 0.04).abs() <= tol,
+            "vertex {v} at radius {radius}"
+        );
+    }
+}
+
 #[test]
 fn bad_obstacles_and_unconverged_contact_are_errors() {
     let mut problem = resting_block(Method::Standard, 0.45);
@@ -418,6 +480,21 @@ fn bad_obstacles_and_unconverged_contact_are_errors() {
         radius: -1.0,
     }));
     assert!(Simulation::new(problem, Settings::default()).is_err());
+    // A ring whose hole would close, and a half-space asked to change its radius.
+    let ring = Shape::Ring {
+        center: Vec3::zeros(),
+        axis: Vec3::z(),
+        radius: 0.2,
+        tube: 0.05,
+    };
+    for (shape, change) in [(ring, -0.15), (ring, -0.2), (ground(0.0).shape, 0.01)] {
+        let mut problem = resting_block(Method::Standard, 0.45);
+        problem.obstacles.push(Obstacle {
+            radius_change: change,
+            ..Obstacle::fixed(shape)
+        });
+        assert!(Simulation::new(problem, Settings::default()).is_err());
+    }
 
     // A block pushed 10 mm into the ground with a single multiplier update.
     let mut problem = resting_block(Method::Standard, 0.45);
@@ -427,6 +504,7 @@ fn bad_obstacles_and_unconverged_contact_are_errors() {
             normal: Vec3::z(),
         },
         translate: Vec3::new(0.0, 0.0, 0.01),
+        radius_change: 0.0,
         curve: None,
     }];
     let settings = Settings {

@@ -1,9 +1,11 @@
 //! Finite-difference validation of the contact term (augmented-Lagrangian frictionless
 //! contact, sec. 8.2-8.3 of Francu et al. 2021): its gradient against central differences of
 //! its energy and its Hessian against central differences of its gradient, for half-spaces,
-//! spheres and cylinders, moved obstacles and positive multipliers, away from the kink
-//! `lambda = rho d` where the energy is only C1; and the projected multiplier update, its
-//! convergence flag and the contact summary against their formulas.
+//! spheres, cylinders and rings, moved obstacles and positive multipliers, away from the kink
+//! `lambda = rho d` where the energy is only C1; the ring's signed distance, gradient and
+//! Hessian against differences of each other, near its axis and its tube's centre circle too;
+//! and the projected multiplier update, its convergence flag and the contact summary against
+//! their formulas.
 
 use isochor_mesh::Vec3;
 use isochor_solvers::terms::{Contact, EnergyTerm};
@@ -42,7 +44,33 @@ fn shape() -> impl Strategy<Value = Shape> {
             axis,
             radius
         }),
+        (vec3(), unit(), 0.4..1.0f64, 0.1..0.3f64).prop_map(|(center, axis, radius, tube)| {
+            Shape::Ring {
+                center,
+                axis,
+                radius,
+                tube,
+            }
+        }),
     ]
+}
+
+/// Distance from the axis of a ring at parameter `t`, and from its tube's centre circle.
+fn ring_radii(o: &Obstacle, x: &Vec3, t: f64) -> Option<(f64, f64)> {
+    let Shape::Ring {
+        center,
+        axis,
+        radius,
+        ..
+    } = o.shape
+    else {
+        return None;
+    };
+    let a = axis.normalize();
+    let r = x - center - t * o.translate;
+    let rho = (r - a * a.dot(&r)).norm();
+    let big = radius + t * o.radius_change;
+    Some((rho, (rho - big).hypot(a.dot(&r))))
 }
 
 /// `(energy, gradient, dense Hessian)` of `term` at `x`.
@@ -74,15 +102,22 @@ proptest! {
     fn gradient_and_hessian_match_finite_differences(
         shapes in prop::collection::vec(shape(), 1..3),
         translate in vec3(),
+        radius_change in -0.1..0.1f64,
         t in 0.0..1.0f64,
         rho in 0.5..50.0f64,
         before in prop::collection::vec(vec3(), 3),
         after in prop::collection::vec(vec3(), 3),
     ) {
         // Vertex 1 is not a candidate: its row must stay zero.
+        // A half-space has no radius to change.
+        let radius_change = if shapes.iter().any(|s| matches!(s, Shape::HalfSpace { .. })) {
+            0.0
+        } else {
+            radius_change
+        };
         let obstacles: Vec<Obstacle> = shapes
             .iter()
-            .map(|&shape| Obstacle { shape, translate, curve: None })
+            .map(|&shape| Obstacle { shape, translate, radius_change, curve: None })
             .collect();
         let term = Contact::new(vec![0, 2], obstacles.clone(), vec![rho, 2.0 * rho]);
         term.set_level(LoadLevel::quasi_static(t));
@@ -99,7 +134,12 @@ proptest! {
                 // At least MIN_RADIAL from the centre of a sphere or the axis of a cylinder,
                 // where `d = |r| - R` is singular.
                 if let Shape::Sphere { radius, .. } | Shape::Cylinder { radius, .. } = o.shape {
-                    prop_assume!(d + radius >= MIN_RADIAL);
+                    prop_assume!(d + radius + t * radius_change >= MIN_RADIAL);
+                }
+                // A ring's Hessian has the same `1 / |q|` and a `R / (rho |q|)` term: the same
+                // bound away from its axis and its tube's centre circle.
+                if let Some((rho, q)) = ring_radii(o, &after[v], t) {
+                    prop_assume!(rho >= MIN_RADIAL && q >= MIN_RADIAL);
                 }
             }
         }
@@ -124,6 +164,74 @@ proptest! {
         let error = (&h - &fd_h).abs().max();
         prop_assert!(error <= TOLERANCE * scale_h, "Hessian error {error:e}\n{h}\n{fd_h}");
         prop_assert!((&h - h.transpose()).abs().max() <= 1e-12 * scale_h);
+    }
+
+    /// The ring's `d`, `grad d` and `Hess d` (moved and with its major radius changed) against
+    /// central differences of `d` and of `grad d`, at points anywhere, at `10^-3` to `10^-1`
+    /// of `R` from its axis (where the `R / rho` curvature is large), and at `10^-3` to
+    /// `10^-1` of `r` from its tube's centre circle (where `1 / |q|` is). The step is `1e-4`
+    /// of the nearer of those distances, so that the truncation error, about
+    /// `(step / distance)^2` of the Hessian, is `1e-8` of it; rounding adds about
+    /// `eps / step` (below `1e-7` of the unit gradient).
+    #[test]
+    fn ring_distance_matches_finite_differences(
+        center in vec3(),
+        axis in unit(),
+        radius in 0.4..1.0f64,
+        tube_fraction in 0.1..0.9f64,
+        translate in vec3(),
+        radius_change in -0.1..0.1f64,
+        t in 0.0..1.0f64,
+        place in 0..3usize,
+        log_near in -3.0..-1.0f64,
+        angle in 0.0..std::f64::consts::TAU,
+        around in 0.0..std::f64::consts::TAU,
+        far in (0.0..2.0f64, -1.0..1.0f64),
+    ) {
+        let tube = tube_fraction * (radius - 0.1);
+        let obstacle = Obstacle {
+            shape: Shape::Ring { center, axis, radius, tube },
+            translate,
+            radius_change,
+            curve: None,
+        };
+        let big = radius + t * radius_change;
+        let a = axis.normalize();
+        let e1 = a.cross(&Vec3::new(0.3, -0.5, 0.8)).normalize();
+        let e2 = a.cross(&e1);
+        let (rho, height) = match place {
+            0 => (far.0, far.1),
+            1 => (10f64.powf(log_near) * big, far.1),
+            _ => {
+                let s = 10f64.powf(log_near) * tube;
+                (big + s * around.cos(), s * around.sin())
+            }
+        };
+        let x = center + t * translate + rho * (angle.cos() * e1 + angle.sin() * e2) + height * a;
+        let (rho, q) = ring_radii(&obstacle, &x, t).unwrap();
+        prop_assume!(rho > 1e-6 && q > 1e-6);
+        let step = 1e-4 * rho.min(q).min(1.0);
+        let (d, n, h) = obstacle.distance(&x, t);
+        prop_assert!((d - (q - tube)).abs() <= 1e-12);
+        let scale_h = h.abs().max().max(1.0);
+        for c in 0..3 {
+            let mut plus = x;
+            let mut minus = x;
+            plus[c] += step;
+            minus[c] -= step;
+            let (dp, np, _) = obstacle.distance(&plus, t);
+            let (dm, nm, _) = obstacle.distance(&minus, t);
+            let fd = (dp - dm) / (2.0 * step);
+            prop_assert!((fd - n[c]).abs() <= TOLERANCE, "gradient {c}: {} against {fd}", n[c]);
+            let column = (np - nm) / (2.0 * step);
+            for r in 0..3 {
+                prop_assert!(
+                    (column[r] - h[(r, c)]).abs() <= TOLERANCE * scale_h,
+                    "Hessian ({r}, {c}): {} against {}\n{h}", h[(r, c)], column[r]
+                );
+            }
+        }
+        prop_assert!((h - h.transpose()).abs().max() <= 1e-12 * scale_h);
     }
 
     /// The projected update `lambda <- max(0, lambda - rho d)` and its convergence flag (every

@@ -107,6 +107,7 @@ impl Bounds {
             }
             ProbeSpec::VolumeChange
             | ProbeSpec::VolumeRatio { .. }
+            | ProbeSpec::ZoneVolumeChange { .. }
             | ProbeSpec::ChamberVolumeRatio { .. }
             | ProbeSpec::MinVolumeRatio
             | ProbeSpec::MaxVolumeRatio

@@ -2,7 +2,7 @@
 //! boundary faces: the construction of the spine arm and the pneumatic actuators. Every tet
 //! is a Kuhn tet of a hex of the grid, so the worst tet is that of the flattest hex.
 
-use super::grid::lined_grid;
+use super::grid::lined_grid_flipped;
 use crate::{MeshError, PhysicalGroup, TetMesh};
 use std::ops::Range;
 
@@ -43,7 +43,19 @@ pub(super) fn carve(
     lines: &[Vec<f64>; 3],
     solid: impl Fn(Cell) -> bool,
 ) -> Result<Carved, MeshError> {
-    let (grid_positions, grid_tets) = lined_grid(lines);
+    carve_flipped(lines, |_, _| false, solid)
+}
+
+/// [`carve`] with the split of a hex reflected along the axes where `flip(axis, cell index
+/// along axis)` holds (see [`super::lattice::Lattice::tets_flipped`]): for grids whose
+/// vertices are then mapped onto rounded shapes, whose corner hexes need their diagonal
+/// through the corner.
+pub(super) fn carve_flipped(
+    lines: &[Vec<f64>; 3],
+    flip: impl Fn(usize, usize) -> bool,
+    solid: impl Fn(Cell) -> bool,
+) -> Result<Carved, MeshError> {
+    let (grid_positions, grid_tets) = lined_grid_flipped(lines, flip);
     let [nx, ny, _] = [0, 1, 2].map(|a| lines[a].len() - 1);
     let cell_of = |e: usize| {
         let c = e / 6;

@@ -54,6 +54,15 @@ pub fn box_grid(min: Vec3, max: Vec3, cells: [usize; 3]) -> Result<TetMesh, Mesh
 /// `(lines[0][i], lines[1][j], lines[2][k])`, and hex `c = i + nx (j + ny k)` holds tets
 /// `6 c .. 6 c + 6`.
 pub(super) fn lined_grid(lines: &[Vec<f64>; 3]) -> (Vec<Vec3>, Vec<[usize; 4]>) {
+    lined_grid_flipped(lines, |_, _| false)
+}
+
+/// [`lined_grid`] with the split of a hex reflected along the axes where `flip(axis, cell
+/// index along axis)` holds ([`Lattice::tets_flipped`]).
+pub(super) fn lined_grid_flipped(
+    lines: &[Vec<f64>; 3],
+    flip: impl Fn(usize, usize) -> bool,
+) -> (Vec<Vec3>, Vec<[usize; 4]>) {
     let lattice = Lattice {
         cells: [0, 1, 2].map(|a| lines[a].len() - 1),
         periodic: [false; 3],
@@ -64,7 +73,7 @@ pub(super) fn lined_grid(lines: &[Vec<f64>; 3]) -> (Vec<Vec3>, Vec<[usize; 4]>) 
         .into_iter()
         .map(|[i, j, k]| Vec3::new(lines[0][i], lines[1][j], lines[2][k]))
         .collect();
-    (positions, lattice.tets())
+    (positions, lattice.tets_flipped(flip))
 }
 
 #[cfg(test)]

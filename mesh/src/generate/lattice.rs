@@ -62,13 +62,21 @@ impl Lattice {
 
     /// The tets, six per hex, positively oriented in lattice coordinates.
     pub fn tets(&self) -> Vec<[usize; 4]> {
+        self.tets_flipped(|axis, index| self.mirror[axis].is_some_and(|m| index < m))
+    }
+
+    /// The tets with the Kuhn split of every hex reflected along the axes where
+    /// `flip(axis, cell index along axis)` holds. A reflection along an axis never changes the
+    /// split of the faces normal to that axis, so any rule of this form keeps the mesh
+    /// conforming; [`Lattice::tets`] flips the hexes below each mirror.
+    pub fn tets_flipped(&self, flip: impl Fn(usize, usize) -> bool) -> Vec<[usize; 4]> {
         let [nx, ny, nz] = self.cells;
         let mut tets = Vec::with_capacity(6 * nx * ny * nz);
         for k in 0..nz {
             for j in 0..ny {
                 for i in 0..nx {
                     let cell = [i, j, k];
-                    let flip = [0, 1, 2].map(|a| self.mirror[a].is_some_and(|m| cell[a] < m));
+                    let flip = [0, 1, 2].map(|a| flip(a, cell[a]));
                     let corner = |c: usize| {
                         self.index([0, 1, 2].map(|a| {
                             let bit = (c >> a) & 1;
