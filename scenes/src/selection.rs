@@ -68,7 +68,8 @@ impl<'a> Selections<'a> {
             MeshSpec::Spine { .. }
             | MeshSpec::Cushion { .. }
             | MeshSpec::Bubble { .. }
-            | MeshSpec::Finger { .. } => {
+            | MeshSpec::Finger { .. }
+            | MeshSpec::Creature { .. } => {
                 let groups = if wanted {
                     generated_groups(source)?
                 } else {
@@ -123,7 +124,7 @@ impl<'a> Selections<'a> {
         };
         let Some(groups) = &self.groups else {
             return Err(error(format!(
-                "physical = \"{key}\" needs a mesh with named groups (a Gmsh .msh or TetGen .node/.ele file, or the generators spine, cushion, bubble and finger), but the scene's mesh is {}",
+                "physical = \"{key}\" needs a mesh with named groups (a Gmsh .msh or TetGen .node/.ele file, or the generators spine, cushion, bubble, finger and creature), but the scene's mesh is {}",
                 self.source
             )));
         };
@@ -340,6 +341,7 @@ fn generated_groups(spec: &MeshSpec) -> Result<Option<PhysicalGroups>, SceneErro
         MeshSpec::Cushion { res } => generate::cushion(*res)?.1,
         MeshSpec::Bubble { res } => generate::bubble(*res)?.1,
         MeshSpec::Finger { res } => generate::finger(*res)?.1,
+        MeshSpec::Creature { res } => generate::creature(*res)?.1,
         _ => return Ok(None),
     }))
 }
