@@ -196,6 +196,16 @@ fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
                 2016.0 * r.powi(3),
             )
         }
+        // Exact: the torso's grid, the legs' and neck's without the layers they share with
+        // the torso and head, the head's.
+        MeshSpec::Creature { res } => {
+            let r = *res as f64;
+            let torso = (8.0 * r + 1.0) * (5.0 * r + 1.0) * (3.0 * r + 1.0);
+            let legs = 4.0 * (2.0 * r + 1.0) * (r + 1.0) * 2.0 * r;
+            let neck = (3.0 * r - 1.0) * (r + 1.0).powi(2);
+            let head = (2.0 * r + 1.0) * (3.0 * r + 1.0).powi(2);
+            (torso + legs + neck + head, 942.0 * r.powi(3))
+        }
         MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
         MeshSpec::File { path } => {
             let (nodes, elements) = file_counts(path)?;
@@ -372,7 +382,8 @@ fn mesh_key(spec: &MeshSpec) -> (&'static str, String) {
         | MeshSpec::Cushion { res }
         | MeshSpec::Bubble { res }
         | MeshSpec::Finger { res }
-        | MeshSpec::Torso { res } => ("mesh.res", format!("res = {res}")),
+        | MeshSpec::Torso { res }
+        | MeshSpec::Creature { res } => ("mesh.res", format!("res = {res}")),
         MeshSpec::Explicit { .. } => ("mesh.tets", "the explicit mesh".to_string()),
         MeshSpec::File { path } => ("mesh.path", format!("the mesh file {}", path.display())),
     }
@@ -420,6 +431,17 @@ mod tests {
         let f = Footprint::of(&huge).unwrap();
         assert!(f.tets.is_finite() && f.tets > 1e57, "{f:?}");
         assert!(check_memory(&huge, "t").is_err());
+    }
+
+    /// The creature's counts are exact: they match its generated mesh.
+    #[test]
+    fn creature_counts_are_exact() {
+        for res in [1, 2] {
+            let (mesh, _) = isochor_mesh::generate::creature(res).unwrap();
+            let counts = mesh_counts(&MeshSpec::Creature { res }).unwrap();
+            let generated = (mesh.num_vertices() as f64, mesh.num_tets() as f64, None);
+            assert_eq!(counts, generated);
+        }
     }
 
     #[test]

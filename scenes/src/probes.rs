@@ -176,9 +176,12 @@ fn probe(
             }
         }
         ProbeSpec::MaxPenetration => over_run(input, |s| s.contact.max_penetration),
-        ProbeSpec::MaxContactForce => over_run(input, |s| {
-            let [x, y, z] = s.contact.force;
-            (x * x + y * y + z * z).sqrt()
+        ProbeSpec::MaxContactForce { obstacle } => over_run(input, |s| {
+            let force = match obstacle {
+                Some(k) => s.contact.obstacle_forces.get(*k).copied(),
+                None => Some(s.contact.force),
+            };
+            force.map_or(0.0, |[x, y, z]| (x * x + y * y + z * z).sqrt())
         }),
         ProbeSpec::FirstContact => input
             .history

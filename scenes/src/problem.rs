@@ -271,6 +271,7 @@ pub fn build_mesh(spec: &MeshSpec, element: TetElement) -> Result<ElementMesh, S
         MeshSpec::Bubble { res } => (generate::bubble(*res)?.0, None),
         MeshSpec::Finger { res } => (generate::finger(*res)?.0, None),
         MeshSpec::Torso { res } => (generate::torso(*res)?.0, None),
+        MeshSpec::Creature { res } => (generate::creature(*res)?.0, None),
         MeshSpec::Ball {
             radius,
             res,

@@ -75,10 +75,13 @@ pub struct CutRecord {
 }
 
 /// The contact of one accepted step.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactRecord {
     /// Total normal force the obstacles exert on the body (N).
     pub force: [f64; 3],
+    /// The same per obstacle, in the scene's order (N).
+    #[serde(default)]
+    pub obstacle_forces: Vec<[f64; 3]>,
     /// Vertices with a positive contact force.
     pub active_vertices: usize,
     /// Largest penetration into an obstacle (m, within the contact tolerance).

@@ -451,6 +451,12 @@ fn record(
         tracked_probe: None,
         contact: ContactRecord {
             force: report.contact.force.into(),
+            obstacle_forces: report
+                .contact
+                .obstacle_forces
+                .iter()
+                .map(|&f| f.into())
+                .collect(),
             active_vertices: report.contact.active_vertices,
             max_penetration: report.contact.max_penetration,
             iterations: report.contact_iterations,

@@ -216,6 +216,13 @@ pub enum MeshSpec {
         /// waist.
         res: usize,
     },
+    /// A creature-like body standing in for the armadillo of Sheen et al. 2021, sec. 8.7
+    /// (shape ours): a 160 x 80 x 50 mm torso on four legs, a thin neck and a head, 260 mm
+    /// long (`isochor_mesh::generate::creature`, `942 res^3` tets), group `feet`.
+    Creature {
+        /// Resolution: cells across the neck.
+        res: usize,
+    },
     /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
     Explicit {
         /// Vertex positions.
@@ -405,7 +412,7 @@ pub struct SelectionSpec {
     pub vertices: Option<Vec<usize>>,
     /// A named group of the mesh, by name (or by number if unnamed): a Gmsh physical group or
     /// TetGen region of the mesh file, or a group the generator names (spine, cushion, bubble,
-    /// finger, torso). A surface group selects its triangles and their vertices, a volume group its
+    /// finger, torso, creature). A surface group selects its triangles and their vertices, a volume group its
     /// tets and their vertices (with `surface`, its tets' boundary faces and their vertices).
     pub physical: Option<String>,
     /// Geometric tolerance (default: 1e-6 times the mesh's bounding-box diagonal).
@@ -929,8 +936,14 @@ pub enum ProbeSpec {
     MaxPenetration,
     /// The first step or frame with a vertex in contact (NaN if none).
     FirstContact,
-    /// Largest norm of the total contact force over the run.
-    MaxContactForce,
+    /// Largest norm of the total contact force over the run, or of the force of obstacle
+    /// `obstacle` alone (its index in `obstacles`, from 0): two obstacles squeezing a body
+    /// push with opposite forces that cancel in the total.
+    MaxContactForce {
+        /// The obstacle (default: all, summed).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        obstacle: Option<usize>,
+    },
 }
 
 fn unit() -> f64 {
@@ -1323,6 +1336,15 @@ impl Scene {
                 ProbeSpec::RadiusIncrease { selection, .. }
                 | ProbeSpec::ChamberVolumeRatio { selection } => {
                     check_selection(format!("{key}.selection"), selection)?
+                }
+                ProbeSpec::MaxContactForce { obstacle: Some(k) } if *k >= self.obstacles.len() => {
+                    return Err(bad(
+                        &format!("{key}.obstacle"),
+                        format!(
+                            "no obstacle {k}: the scene has {} (numbered from 0)",
+                            self.obstacles.len()
+                        ),
+                    ))
                 }
                 _ => {}
             }

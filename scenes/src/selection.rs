@@ -69,7 +69,8 @@ impl<'a> Selections<'a> {
             | MeshSpec::Cushion { .. }
             | MeshSpec::Bubble { .. }
             | MeshSpec::Finger { .. }
-            | MeshSpec::Torso { .. } => {
+            | MeshSpec::Torso { .. }
+            | MeshSpec::Creature { .. } => {
                 let groups = if wanted {
                     generated_groups(source)?
                 } else {
@@ -124,7 +125,7 @@ impl<'a> Selections<'a> {
         };
         let Some(groups) = &self.groups else {
             return Err(error(format!(
-                "physical = \"{key}\" needs a mesh with named groups (a Gmsh .msh or TetGen .node/.ele file, or the generators spine, cushion, bubble, finger and torso), but the scene's mesh is {}",
+                "physical = \"{key}\" needs a mesh with named groups (a Gmsh .msh or TetGen .node/.ele file, or the generators spine, cushion, bubble, finger, torso and creature), but the scene's mesh is {}",
                 self.source
             )));
         };
@@ -342,6 +343,7 @@ fn generated_groups(spec: &MeshSpec) -> Result<Option<PhysicalGroups>, SceneErro
         MeshSpec::Bubble { res } => generate::bubble(*res)?.1,
         MeshSpec::Finger { res } => generate::finger(*res)?.1,
         MeshSpec::Torso { res } => generate::torso(*res)?.1,
+        MeshSpec::Creature { res } => generate::creature(*res)?.1,
         _ => return Ok(None),
     }))
 }

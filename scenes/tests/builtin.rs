@@ -747,3 +747,46 @@ fn band_zones_keep_their_volume_under_the_band() {
         body(&locked)
     );
 }
+
+/// Sec. 8.7 and Table 1 of Sheen et al. 2021, the creature squeezed between two cylinders
+/// (reduced: 942 tets, 2 frames): both cylinders press on the body and no vertex enters them
+/// beyond the contact tolerance (1e-6 of the bounding-box diagonal, the solver's default);
+/// ours keeps the volume within the constraint tolerance; Stable neo-Hookean at lambda =
+/// 400 kPa without volume constraint changes it by more than that.
+#[test]
+fn squeezed_creature_of_table_1() {
+    let tol = constraint_tolerance();
+    let [length, width, height] = isochor_mesh::generate::CREATURE_SIZE;
+    let diagonal = (length * length + width * width + height * height).sqrt();
+    let mut changes = Vec::new();
+    for variant in ["ours", "snh-400"] {
+        let r = run("squeezed-creature", variant, &[]);
+        eprintln!(
+            "squeezed-creature [{variant}]: volume change {:+.4e}, {} Newton iterations, probes {:?}",
+            r.volume_change, r.newton_iterations, r.probes
+        );
+        for probe in ["top_cylinder_force", "bottom_cylinder_force"] {
+            assert!(r.probes[probe] > 0.0, "{variant}: {probe}");
+        }
+        assert!(r.probes["max_penetration"] <= 1e-6 * diagonal, "{variant}");
+        changes.push(r.volume_change.abs());
+    }
+    assert!(changes[0] <= tol, "ours: {changes:?}");
+    assert!(changes[1] > tol, "snh-400: {changes:?}");
+}
+
+/// A contact-force probe of an obstacle the scene does not have is refused, naming the key.
+#[test]
+fn contact_force_of_a_missing_obstacle_is_refused() {
+    let e = load_scene(
+        "squeezed-creature",
+        None,
+        &[Override::parse("probes.top_cylinder_force.obstacle=2").unwrap()],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("probes.top_cylinder_force.obstacle") && e.contains("has 2"),
+        "{e}"
+    );
+}

@@ -296,7 +296,7 @@ fn dropped_ball_bounces_and_releases_every_contact() {
             frames: 120,
         },
         |frame| {
-            let c = frame.report.contact;
+            let c = &frame.report.contact;
             max_penetration = max_penetration.max(c.max_penetration);
             negative |= frame.contact_forces.iter().any(|f| f.z < 0.0);
             if c.active_vertices > 0 && first_contact.is_none() {

@@ -122,7 +122,7 @@ impl Bounds {
             ProbeSpec::MaxPenetration => Tolerance::absolute(self.penetration),
             // A ratio of pressure differences (multipliers of the same solve, known as well
             // as the state), and a force: relative.
-            ProbeSpec::PressureCheckerboard | ProbeSpec::MaxContactForce => {
+            ProbeSpec::PressureCheckerboard | ProbeSpec::MaxContactForce { .. } => {
                 Tolerance::relative(self.relative, 0.0)
             }
             ProbeSpec::Energy { .. } => self.energy(),

@@ -64,7 +64,13 @@ mod tests {
                 "{}",
                 mesh.worst_quality()
             );
-            check_generated(&mesh, &groups, 0.04 * 0.04 * 0.015 - chamber, area, chamber);
+            check_generated(
+                &mesh,
+                &groups,
+                0.04 * 0.04 * 0.015 - chamber,
+                area,
+                Some(chamber),
+            );
             let membrane = &groups.get("membrane").unwrap().faces;
             assert_eq!(membrane.len(), 32 * res * res);
             let x = mesh.positions();

@@ -31,6 +31,15 @@ pub(super) fn graded_lines(segments: &[(f64, usize)], res: usize) -> Vec<f64> {
     lines
 }
 
+/// The segment index of every hex along one axis of [`graded_lines`]`(segments, res)`.
+pub(super) fn segment_indices(segments: &[(f64, usize)], res: usize) -> Vec<usize> {
+    segments
+        .iter()
+        .enumerate()
+        .flat_map(|(s, &(_, n))| std::iter::repeat_n(s, n * res))
+        .collect()
+}
+
 /// The hex indices of segment `index` of `segments` at `res`.
 pub(super) fn segment_cells(segments: &[(f64, usize)], res: usize, index: usize) -> Range<isize> {
     let start: usize = segments[..index].iter().map(|s| s.1 * res).sum();

@@ -59,7 +59,13 @@ mod tests {
                 "{}",
                 mesh.worst_quality()
             );
-            check_generated(&mesh, &groups, 0.04 * 0.04 * 0.013 - chamber, area, chamber);
+            check_generated(
+                &mesh,
+                &groups,
+                0.04 * 0.04 * 0.013 - chamber,
+                area,
+                Some(chamber),
+            );
             assert_eq!(groups.get("base").unwrap().faces.len(), 72 * res * res);
             assert_eq!(groups.get("top").unwrap().faces.len(), 72 * res * res);
         }

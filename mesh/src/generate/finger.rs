@@ -2,7 +2,7 @@
 //! row of chambers joined by a channel above a thicker strain-limiting base. Shape and
 //! dimensions ours (the paper gives none).
 
-use super::carved::{carve, graded_lines, Cell};
+use super::carved::{carve, graded_lines, segment_indices, Cell};
 use super::resolution;
 use crate::{MeshError, PhysicalGroups, TetMesh};
 
@@ -76,14 +76,11 @@ pub fn finger(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
         graded_lines(&Z_SEGMENTS, res),
     ];
     // The slab or segment index of every hex along each axis.
-    let owner = |segments: &[(f64, usize)]| -> Vec<usize> {
-        segments
-            .iter()
-            .enumerate()
-            .flat_map(|(s, &(_, n))| std::iter::repeat_n(s, n * res))
-            .collect()
-    };
-    let (along_x, along_y, along_z) = (owner(&x_segments), owner(&Y_SEGMENTS), owner(&Z_SEGMENTS));
+    let (along_x, along_y, along_z) = (
+        segment_indices(&x_segments, res),
+        segment_indices(&Y_SEGMENTS, res),
+        segment_indices(&Z_SEGMENTS, res),
+    );
     let last_chamber = slabs.len() - 2;
     let inside = |c: Cell| (0..3).all(|a| c[a] >= 0 && (c[a] as usize) < lines[a].len() - 1);
     let cavity = |c: Cell| {
@@ -147,7 +144,7 @@ mod tests {
                 &groups,
                 length * width * height - cavity - gaps,
                 outer + inner,
-                cavity,
+                Some(cavity),
             );
             let faces = |k: &str| groups.get(k).unwrap().faces.len();
             assert_eq!(

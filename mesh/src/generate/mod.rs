@@ -3,11 +3,11 @@
 //! The disk and ball maps are singular at the corners of the square or cube they map, so the
 //! worst tet there flattens as `res` grows (normalized volume `V / l_max^3` relative to the
 //! regular tet, [`crate::TetMesh::quality`]: Kuhn box 0.27; cylinder 0.20 at res 4, 0.11 at
-//! res 8; ball 0.19 at res 4, 0.07 at res 8). The spine arm and the pneumatic actuators are
-//! box grids with hexes removed, graded per axis so that thin walls get whole cells: their
-//! worst tet is that of their flattest hex, the same at every `res`. They name their own
-//! groups of boundary faces ([`crate::PhysicalGroups`]: a chamber's walls, a clamped end),
-//! which scenes select by name as a Gmsh file's.
+//! res 8; ball 0.19 at res 4, 0.07 at res 8). The spine arm, the pneumatic actuators and the
+//! creature are box grids with hexes removed, graded per axis so that thin walls get whole
+//! cells: their worst tet is that of their flattest hex, the same at every `res`. They name
+//! their own groups of boundary faces ([`crate::PhysicalGroups`]: a chamber's walls, a
+//! clamped end, the feet), which scenes select by name as a Gmsh file's.
 //!
 //! | generator | tets | worst quality |
 //! |---|---|---|
@@ -20,6 +20,7 @@
 //! | [`bubble`] `res` | `552 res^3` (res 2: 4,416; a chamber under a membrane) | 0.18 |
 //! | [`finger`] `res` | `1494 res^3` (res 2: 11,952; five chambers joined by a channel) | 0.12 |
 //! | [`torso`] `res` | `2016 res^3` (res 2: 16,128; a torso on the tops of two legs, mapped like the cylinder) | 0.040 at res 1, 0.033 at res 2 |
+//! | [`creature`] `res` | `942 res^3` (res 2: 7,536; a torso on four legs, a neck, a head) | 0.19 |
 //!
 //! The curved generators also give their true surface for
 //! [`crate::ElementMesh::quadratic_on_surface`]: [`cylinder_surface`] (cylinder and puck),
@@ -31,6 +32,7 @@
 mod ball;
 mod bubble;
 mod carved;
+mod creature;
 mod cushion;
 mod cylinder;
 mod finger;
@@ -42,6 +44,7 @@ mod tube;
 
 pub use ball::{ball, ball_surface};
 pub use bubble::{bubble, BUBBLE_SIZE};
+pub use creature::{creature, CREATURE_SIZE};
 pub use cushion::{cushion, CUSHION_SIZE};
 pub use cylinder::{cylinder, cylinder_surface, puck};
 pub use finger::{finger, FINGER_SIZE};
@@ -157,15 +160,15 @@ pub(crate) mod tests {
     }
 
     /// Checks a generated mesh with groups: positive tets, a closed manifold surface of area
-    /// `area` enclosing `volume`, groups made of boundary faces and disjoint, and a closed
-    /// `chamber` group enclosing `chamber` with its faces pointing into the cavity (the
-    /// divergence theorem gives minus its volume). Exact up to rounding.
+    /// `area` enclosing `volume`, groups made of boundary faces and disjoint, and, if
+    /// `chamber` is given, a closed `chamber` group enclosing it with its faces pointing into
+    /// the cavity (the divergence theorem gives minus its volume). Exact up to rounding.
     pub fn check_generated(
         mesh: &TetMesh,
         groups: &PhysicalGroups,
         volume: f64,
         area: f64,
-        chamber: f64,
+        chamber: Option<f64>,
     ) {
         check_groups(mesh, groups);
         let boundary = mesh.boundary().unwrap();
@@ -177,6 +180,18 @@ pub(crate) mod tests {
             "area {} != {area}",
             boundary.rest_area()
         );
+        let faces: HashSet<[usize; 3]> = boundary.triangles().iter().copied().collect();
+        let mut seen = HashSet::new();
+        for (key, group) in groups.iter() {
+            assert!(!group.faces.is_empty(), "{key} is empty");
+            for f in &group.faces {
+                assert!(faces.contains(f), "{key}: {f:?} is no boundary face");
+                assert!(seen.insert(*f), "{key}: {f:?} is in two groups");
+            }
+        }
+        let Some(chamber) = chamber else {
+            return;
+        };
         let walls = &groups.get("chamber").unwrap().faces;
         check_closed_manifold(walls).unwrap();
         let enclosed: f64 = walls

@@ -25,10 +25,13 @@ use nalgebra::Matrix3;
 use std::sync::{RwLock, RwLockWriteGuard};
 
 /// Totals of the contact forces at a state.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct ContactSummary {
     /// Sum of the normal forces the obstacles exert on the body.
     pub force: Vec3,
+    /// The same per obstacle, in the problem's order (two cylinders squeezing a body push
+    /// with opposite forces that cancel in the sum).
+    pub obstacle_forces: Vec<Vec3>,
     /// Vertices with a positive contact force.
     pub active_vertices: usize,
     /// Largest penetration `max(0, -d)` over all vertex-obstacle pairs.
@@ -172,11 +175,15 @@ impl Contact {
     pub fn summary(&self, x: &[Vec3]) -> ContactSummary {
         let state = self.state();
         let m = self.obstacles.len();
-        let mut summary = ContactSummary::default();
+        let mut summary = ContactSummary {
+            obstacle_forces: vec![Vec3::zeros(); m],
+            ..ContactSummary::default()
+        };
         let mut active = vec![false; self.vertices.len()];
         for (a, k, d, n, _) in self.pairs(x, state.level) {
             let f = state.multipliers[a * m + k];
             summary.force += f * n;
+            summary.obstacle_forces[k] += f * n;
             active[a] |= f > 0.0;
             summary.max_penetration = summary.max_penetration.max(-d);
         }
