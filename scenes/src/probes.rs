@@ -444,6 +444,9 @@ mod tests {
             [selections.top]
             box = {{ min = [0.0, 0.0, 0.5], max = [1.0, 1.0, 1.0] }}
             surface = true
+            [[dirichlet]]
+            selection = "bottom"
+            axes = "xyz"
             [zones]
             kind = "painted"
             paint = ["bottom", "top"]
