@@ -275,7 +275,10 @@ fn every_builtin_scene_on_quadratic_tets_matches_its_pinned_values() {
         // Whether the point is physical or the coarse mesh's was not decided (res 8 did not
         // finish in 400 s); passing it needs path following, not a tolerance. Measured
         // 2026-11-30, release. `standard` on the same mesh reaches 50 kPa.
-        &["compressed-block/fig-12d-mixed-p1"],
+        // The band's constrained run on the 10-node torso takes 88 s in the dev profile (its
+        // neo-Hookean variants 9-11 s, and ours 3 s on tet4): it is pinned on tet4 only, to
+        // keep the suite's time.
+        &["compressed-block/fig-12d-mixed-p1", "band/ours"],
     );
 }
 
