@@ -10,7 +10,7 @@
 //!   volume change against time, one line per run (Fig. 8 of Sheen et al. 2021).
 
 use super::Comparison;
-use crate::output::{finish_plot, plot_error, range, register_font, tick};
+use crate::output::{draw_legend, finish_plot, plot_error, range, register_font, tick};
 use crate::result::{RunResult, StepRecord};
 use crate::SceneError;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
@@ -185,13 +185,7 @@ where
                 .legend(move |(x, y)| Cross::new((x + 10, y), 6, color.stroke_width(3)));
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| plot_error(path, e))
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight, path)
 }
 
 /// The force residual before every Newton iteration of every attempt (cut attempts and a
@@ -359,13 +353,7 @@ pub fn plot_energies(path: &Path, comparison: &Comparison) -> Result<(), SceneEr
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| plot_error(path, e))?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, path)?;
     }
     root.present().map_err(|e| plot_error(path, e))
 }

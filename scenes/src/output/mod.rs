@@ -13,7 +13,7 @@ mod preview;
 pub use atomic::OutputDir;
 pub use csv::{write_iterations_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
-pub(crate) use plots::{finish_plot, plot_error, range, register_font, tick};
+pub(crate) use plots::{draw_legend, finish_plot, plot_error, range, register_font, tick};
 pub use plots::{plot_energy, plot_residuals};
 pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};
 pub use preview::{write_preview, PreviewOptions};

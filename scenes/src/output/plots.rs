@@ -40,15 +40,28 @@ where
     Y: plotters::coord::ranged1d::Ranged,
 {
     if legend {
-        chart
-            .configure_series_labels()
-            .position(position)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| plot_error(path, e))?;
+        draw_legend(chart, position, path)?;
     }
     root.present().map_err(|e| plot_error(path, e))
+}
+
+/// Draws the series' legend at `position` on a white, framed box.
+pub(crate) fn draw_legend<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    position: SeriesLabelPosition,
+    path: &Path,
+) -> Result<(), SceneError>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| plot_error(path, e))
 }
 
 pub(crate) fn plot_error(path: &Path, e: impl std::fmt::Display) -> SceneError {
