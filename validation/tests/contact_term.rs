@@ -120,7 +120,7 @@ proptest! {
             .map(|&shape| Obstacle { shape, translate, radius_change, curve: None })
             .collect();
         let term = Contact::new(vec![0, 2], obstacles.clone(), vec![rho, 2.0 * rho]);
-        term.set_level(LoadLevel::quasi_static(t));
+        term.begin_step(LoadLevel::quasi_static(t));
         // Multipliers from a projected update at another state: positive where that state
         // penetrated.
         term.update(&before, 0.0);
@@ -293,4 +293,41 @@ proptest! {
             prop_assert!((summary.max_penetration - penetration).abs() <= f64::EPSILON * CEILING);
         }
     }
+}
+
+/// The penalty adaptation: a vertex held 1 cm inside a floor leaves the violation at 1 cm
+/// after every update, so each update from the second on multiplies the penalty by 10, up
+/// to 1000; the energy's force uses the raised penalty, and a new step starts from the
+/// base penalty again.
+#[test]
+fn penalties_grow_while_the_violation_stalls_and_reset_each_step() {
+    let floor = Obstacle::fixed(Shape::HalfSpace {
+        point: Vec3::zeros(),
+        normal: Vec3::z(),
+    });
+    let rho = 2.0;
+    let term = Contact::new(vec![0], vec![floor], vec![rho]);
+    term.begin_step(LoadLevel::quasi_static(0.0));
+    let x = [Vec3::new(0.0, 0.0, -0.01)];
+    let mut lambda = 0.0;
+    for expected_scale in [1.0, 1.0, 10.0, 100.0, 1000.0] {
+        assert_eq!(term.penalty_scale(), expected_scale);
+        // The update uses the penalty in force before it.
+        lambda += expected_scale * rho * 0.01;
+        assert!(!term.update(&x, 1e-3));
+        assert!((term.multipliers()[0] - lambda).abs() <= 1e-12 * lambda);
+    }
+    let (_, gradient, _) = evaluate(&term, &x);
+    let force = lambda + 1000.0 * rho * 0.01;
+    assert!(
+        (gradient[2] + force).abs() <= 1e-12 * force,
+        "{} against {force}",
+        -gradient[2]
+    );
+    term.begin_step(LoadLevel::quasi_static(1.0));
+    assert_eq!(term.penalty_scale(), 1.0);
+    // Progress (the violation falls from 1 cm to 1 mm, below a quarter) keeps the penalty.
+    assert!(!term.update(&x, 1e-4));
+    assert!(!term.update(&[Vec3::new(0.0, 0.0, -0.001)], 1e-4));
+    assert_eq!(term.penalty_scale(), 1.0);
 }

@@ -688,7 +688,7 @@ impl Simulation {
         };
         let target = step_target(&self.model, level, force_tolerance);
         if let Some(contact) = &self.model.contact {
-            contact.set_level(level);
+            contact.begin_step(level);
         }
         Ok(Linearizer {
             system,
@@ -806,7 +806,7 @@ impl Simulation {
             }
             let contact_start = system.model.contact.as_ref().map(|c| c.snapshot());
             if let Some(contact) = &system.model.contact {
-                contact.set_level(attempt.level);
+                contact.begin_step(attempt.level);
             }
             let mut x = self.state.positions.clone();
             let mut p = self.state.multipliers.clone();

@@ -17,6 +17,13 @@
 //! by construction, and a multiplier is positive only where the gap is within the tolerance
 //! (complementarity). Because contact is just another energy term, every solver (Newton,
 //! saddle-point Newton with zero-compliance constraints, dual ascent) handles it unchanged.
+//!
+//! The multipliers converge linearly, at a rate set by how the penalty compares with the
+//! stiffness the body opposes to a vertex pushed along the normal: a nearly incompressible
+//! body or a stiff neighbourhood makes it slow. As in the penalty update of the augmented
+//! Lagrangian framework (Nocedal & Wright, Framework 17.3), an update whose largest
+//! constraint violation (`|lambda_new - lambda| / rho`) is not below a quarter of the previous
+//! one multiplies every penalty by 10 for the rest of the step (at most 10^3 times the base).
 
 use super::EnergyTerm;
 use crate::{LoadLevel, Obstacle, SolverError};
@@ -44,7 +51,18 @@ pub struct ContactSummary {
 pub struct ContactState {
     multipliers: Vec<f64>,
     level: LoadLevel,
+    /// Factor on every penalty, raised within a step while the violation falls too slowly.
+    penalty_scale: f64,
+    /// Largest violation `|lambda_new - lambda| / rho` of the step's previous update.
+    last_violation: Option<f64>,
 }
+
+/// An update must cut the violation below this fraction of the previous one...
+const SLOW_PROGRESS: f64 = 0.25;
+/// ...or the penalties grow by this factor...
+const PENALTY_GROWTH: f64 = 10.0;
+/// ...up to this multiple of the base penalties.
+const MAX_PENALTY_SCALE: f64 = 1e3;
 
 /// Augmented-Lagrangian contact of `vertices` against `obstacles`.
 #[derive(Debug)]
@@ -68,6 +86,8 @@ impl Contact {
             state: RwLock::new(ContactState {
                 multipliers: vec![0.0; pairs],
                 level: LoadLevel::quasi_static(0.0),
+                penalty_scale: 1.0,
+                last_violation: None,
             }),
         }
     }
@@ -87,9 +107,18 @@ impl Contact {
         self.stiffness = stiffness;
     }
 
-    /// Moves the obstacles to where `level` puts them.
-    pub fn set_level(&self, level: LoadLevel) {
-        self.state().level = level;
+    /// Moves the obstacles to where `level` puts them and starts a step: the penalties
+    /// return to their base values.
+    pub fn begin_step(&self, level: LoadLevel) {
+        let mut state = self.state();
+        state.level = level;
+        state.penalty_scale = 1.0;
+        state.last_violation = None;
+    }
+
+    /// The factor on the base penalties the current step has reached.
+    pub fn penalty_scale(&self) -> f64 {
+        self.state().penalty_scale
     }
 
     /// The multipliers (normal force magnitudes), vertex-major over the obstacles.
@@ -139,21 +168,31 @@ impl Contact {
     /// The projected multiplier update `lambda <- max(0, lambda - rho d)` at the solution `x`
     /// of the current subproblem; returns whether every multiplier moved by at most
     /// `rho * tolerance` (then penetrations are within `tolerance` and complementarity holds
-    /// to it).
+    /// to it). An update that leaves the violation above a quarter of the previous one raises
+    /// the penalties for the next subproblem (module docs).
     pub fn update(&self, x: &[Vec3], tolerance: f64) -> bool {
         let mut state = self.state();
         let level = state.level;
+        let scale = state.penalty_scale;
         let m = self.obstacles.len();
         let mut converged = true;
+        let mut violation = 0.0f64;
         for (a, k, d, _, _) in self.pairs(x, level) {
-            let rho = self.stiffness[a];
+            let rho = scale * self.stiffness[a];
             let lambda = &mut state.multipliers[a * m + k];
             let next = (*lambda - rho * d).max(0.0);
-            if (next - *lambda).abs() > rho * tolerance {
-                converged = false;
-            }
+            converged &= (next - *lambda).abs() <= rho * tolerance;
+            violation = violation.max((next - *lambda).abs() / rho);
             *lambda = next;
         }
+        if !converged
+            && state
+                .last_violation
+                .is_some_and(|v| violation > SLOW_PROGRESS * v)
+        {
+            state.penalty_scale = (scale * PENALTY_GROWTH).min(MAX_PENALTY_SCALE);
+        }
+        state.last_violation = Some(violation);
         converged
     }
 
@@ -216,9 +255,9 @@ impl EnergyTerm for Contact {
         mut gradient: Option<&mut [f64]>,
         mut hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        let (multipliers, level) = {
+        let (multipliers, level, scale) = {
             let state = self.state();
-            (state.multipliers.clone(), state.level)
+            (state.multipliers.clone(), state.level, state.penalty_scale)
         };
         if let Some(h) = hessian.as_deref_mut() {
             h.fill(0.0);
@@ -226,7 +265,7 @@ impl EnergyTerm for Contact {
         let m = self.obstacles.len();
         let mut energy = 0.0;
         for (a, k, d, n, hd) in self.pairs(x, level) {
-            let rho = self.stiffness[a];
+            let rho = scale * self.stiffness[a];
             let lambda = multipliers[a * m + k];
             let s = lambda - rho * d;
             let f = s.max(0.0);
