@@ -20,7 +20,9 @@
 //!   `c10 (Ib1 - 3) + c20 (Ib1 - 3)^2 + c30 (Ib1 - 3)^3`, and the uncoupled N-term [`Ogden`]
 //!   model on the isochoric principal stretches;
 //! - penalties ([`VolumetricPenalty`]): [`LogPenalty`], [`QuadraticPenalty`], [`SheenPenalty`]
-//!   (eq. 13-15 of Sheen et al. 2021), [`Snh2Penalty`] (SNH2 of Fig. 3 of Sheen et al.);
+//!   (eq. 13-15 of Sheen et al. 2021), [`Snh2Penalty`] (SNH2 of Fig. 3 of Sheen et al.),
+//!   [`StvkPenalty`] (Saint Venant-Kirchhoff under pure dilation: our reading of Fig. 3's
+//!   Kikuuwe et al. 2009 curve);
 //! - [`Composed`] `Psi_dev + lambda U(J)`: [`standard_neo_hookean`], [`quadratic_neo_hookean`],
 //!   [`constrained_neo_hookean`], [`stable_neo_hookean`] and
 //!   [`StableNeoHookean::from_linear_lame`] (Smith et al. 2018);
@@ -60,7 +62,7 @@ pub use materials::{
     MooneyRivlin, Ogden, Yeoh,
 };
 pub use parameters::{bulk_modulus, Lame};
-pub use penalties::{LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty};
+pub use penalties::{LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty};
 pub use projection::project_to_psd;
 
 /// 9x9 matrix: `dP/dF` in column-major flattening.

@@ -4,13 +4,14 @@
 //!
 //! The curves: the neo-Hookean `(log J)^2 / 2` (eq. 4), Stable neo-Hookean `(J - 1)^2 / 2`
 //! (`U(J; 0)`, after eq. 15), its second-order expansion SNH2, and `U(J; beta)` (eq. 13) for
-//! `beta = 1` and `6`. The figure's Kikuuwe et al. 2009 penalty is missing: the paper does not
-//! write it.
+//! `beta = 1` and `6`, and for the figure's Kikuuwe et al. 2009 curve, whose formula the paper
+//! does not write, our reading: the Saint Venant-Kirchhoff volumetric term under pure dilation
+//! ([`StvkPenalty`]).
 
 use crate::output::{finish_plot, plot_error, register_font, OutputDir};
 use crate::SceneError;
 use isochor_energies::{
-    LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, VolumetricPenalty,
+    LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty, VolumetricPenalty,
 };
 use plotters::prelude::*;
 use std::fmt::Write;
@@ -37,6 +38,7 @@ fn penalties() -> Result<Vec<Curve>, SceneError> {
             RGBColor(255, 127, 14),
         ),
         ("snh2", Box::new(Snh2Penalty), RED),
+        ("kikuuwe_stvk", Box::new(StvkPenalty), RGBColor(230, 190, 0)),
         (
             "ours_beta_1",
             Box::new(SheenPenalty::new(1.0)?),

@@ -524,7 +524,7 @@ fn frames_carry_von_mises_stress_and_velocity() {
 #[test]
 fn penalties_writes_the_csv_and_png_of_fig_3() {
     use isochor_energies::{
-        LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, VolumetricPenalty,
+        LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty, VolumetricPenalty,
     };
     let dir = scratch("penalties");
     let out = dir.join("fig3");
@@ -535,10 +535,11 @@ fn penalties_writes_the_csv_and_png_of_fig_3() {
     let csv = std::fs::read_to_string(out.join("penalties.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let penalties: [(&str, Box<dyn VolumetricPenalty>); 5] = [
+    let penalties: [(&str, Box<dyn VolumetricPenalty>); 6] = [
         ("neo_hookean", Box::new(LogPenalty)),
         ("stable_neo_hookean", Box::new(QuadraticPenalty)),
         ("snh2", Box::new(Snh2Penalty)),
+        ("kikuuwe_stvk", Box::new(StvkPenalty)),
         ("ours_beta_1", Box::new(SheenPenalty::new(1.0).unwrap())),
         ("ours_beta_6", Box::new(SheenPenalty::new(6.0).unwrap())),
     ];

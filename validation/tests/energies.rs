@@ -12,7 +12,7 @@ use isochor_energies::{
     standard_neo_hookean, tet, triangle, BonetWood, DistortionalNeoHookean,
     DistortionalStableNeoHookean, Epidermis, FbarNeoHookean, Hyperelastic, Lame, LogPenalty,
     Matrix12, Matrix9, Mooney, MooneyRivlin, Ogden, OutOfDomain, QuadraticPenalty, SheenPenalty,
-    Snh2Penalty, StableNeoHookean, VolumetricPenalty, Yeoh,
+    Snh2Penalty, StableNeoHookean, StvkPenalty, VolumetricPenalty, Yeoh,
 };
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
 use isochor_validation::strategies::{
@@ -720,12 +720,15 @@ penalty_suite! {
     quadratic_penalty_derivatives => |_beta| QuadraticPenalty, j in -20.0..20.0f64;
     sheen_penalty_derivatives => |beta| SheenPenalty::new(beta).unwrap(), j in -20.0..20.0f64;
     snh2_penalty_derivatives => |_beta| Snh2Penalty, j in -20.0..20.0f64;
+    stvk_penalty_derivatives => |_beta| StvkPenalty, j in 1e-3..20.0f64;
     // The extremes of Fig. 3 of Sheen et al. 2021 and beyond: J -> 0+ and large J.
     log_penalty_derivatives_near_zero => |_beta| LogPenalty, j in 1e-6..1e-2f64;
     log_penalty_derivatives_large => |_beta| LogPenalty, j in 20.0..1e3f64;
     sheen_penalty_derivatives_large => |beta| SheenPenalty::new(beta).unwrap(), j in 20.0..1e3f64;
     snh2_penalty_derivatives_near_zero => |_beta| Snh2Penalty, j in 1e-6..1e-2f64;
     snh2_penalty_derivatives_large => |_beta| Snh2Penalty, j in 20.0..1e3f64;
+    stvk_penalty_derivatives_near_zero => |_beta| StvkPenalty, j in 1e-6..1e-2f64;
+    stvk_penalty_derivatives_large => |_beta| StvkPenalty, j in 20.0..1e3f64;
 }
 
 /// Which of the conditions a-e of sec. 5 of Sheen et al. 2021 a penalty meets: a) `U(1) = 0`,
@@ -760,14 +763,21 @@ fn conditions(u: &dyn VolumetricPenalty) -> [bool; 5] {
 /// so does Stable neo-Hookean `(J - 1)^2 / 2 = U(J; 0)`, and the neo-Hookean `(log J)^2 / 2` is
 /// undefined for `J <= 0` (Fig. 3: fails d). What the paper does not state, by analysis: the
 /// neo-Hookean `U'' = (1 - log J) / J^2 < 0` for `J > e` (fails e); SNH2 meets a-d but
-/// `U'' = 1 - 3d + 3d^2 / 2 < 0` for `d = J - 1` in `(1 - 1/sqrt 3, 1 + 1/sqrt 3)` (fails e).
+/// `U'' = 1 - 3d + 3d^2 / 2 < 0` for `d = J - 1` in `(1 - 1/sqrt 3, 1 + 1/sqrt 3)` (fails e);
+/// our reading of the Kikuuwe et al. 2009 curve (Saint Venant-Kirchhoff under pure dilation)
+/// is convex but its stress `-3 (J^(-1/3) - J^(1/3)) / 2` diverges as `J -> 0+` (fails d).
 #[test]
 fn penalty_conditions_of_sheen_et_al() {
     let sheen = |beta| SheenPenalty::new(beta).unwrap();
-    let cases: [(&str, &dyn VolumetricPenalty, [bool; 5]); 6] = [
+    let cases: [(&str, &dyn VolumetricPenalty, [bool; 5]); 7] = [
         ("neo-Hookean", &LogPenalty, [true, true, true, false, false]),
         ("Stable neo-Hookean", &QuadraticPenalty, [true; 5]),
         ("SNH2", &Snh2Penalty, [true, true, true, true, false]),
+        (
+            "StVK dilation",
+            &StvkPenalty,
+            [true, true, true, false, true],
+        ),
         ("U(J; 0)", &sheen(0.0), [true; 5]),
         ("U(J; 1)", &sheen(1.0), [true; 5]),
         ("U(J; 6)", &sheen(6.0), [true; 5]),
