@@ -11,6 +11,17 @@ pub struct OutOfDomain {
     pub j: f64,
 }
 
+impl OutOfDomain {
+    /// `j` if it is positive, else the error of `energy` at `j` (also for NaN).
+    pub fn positive(energy: &'static str, j: f64) -> Result<f64, OutOfDomain> {
+        if j > 0.0 {
+            Ok(j)
+        } else {
+            Err(OutOfDomain { energy, j })
+        }
+    }
+}
+
 /// An invalid material parameter, named.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("invalid material parameter {name} = {value}: {reason}")]

@@ -285,12 +285,7 @@ pub(crate) fn positive_determinant(
     energy: &'static str,
     f: &Matrix3<f64>,
 ) -> Result<f64, OutOfDomain> {
-    let j = f.determinant();
-    if j > 0.0 {
-        Ok(j)
-    } else {
-        Err(OutOfDomain { energy, j })
-    }
+    OutOfDomain::positive(energy, f.determinant())
 }
 
 fn columns(f: &Matrix3<f64>) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {

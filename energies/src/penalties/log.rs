@@ -10,14 +10,7 @@ pub struct LogPenalty;
 
 impl LogPenalty {
     fn log_j(&self, j: f64) -> Result<f64, OutOfDomain> {
-        if self.is_defined_at(j) {
-            Ok(j.ln())
-        } else {
-            Err(OutOfDomain {
-                energy: self.name(),
-                j,
-            })
-        }
+        Ok(OutOfDomain::positive(self.name(), j)?.ln())
     }
 }
 

@@ -20,14 +20,7 @@ pub struct StvkPenalty;
 impl StvkPenalty {
     /// `s = J^(1/3)` where defined.
     fn stretch(&self, j: f64) -> Result<f64, OutOfDomain> {
-        if self.is_defined_at(j) {
-            Ok(j.cbrt())
-        } else {
-            Err(OutOfDomain {
-                energy: self.name(),
-                j,
-            })
-        }
+        Ok(OutOfDomain::positive(self.name(), j)?.cbrt())
     }
 }
 
