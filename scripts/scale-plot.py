@@ -44,7 +44,7 @@ def main(source, target):
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
-    fig.suptitle("Cantilever box, one load step at nu = 0.4999 (direct solver)")
+    fig.suptitle("Cantilever box, one load step at nu = 0.4999 (direct solver unless the label says)")
     fig.tight_layout()
     fig.savefig(target, dpi=100)
 
