@@ -727,7 +727,8 @@ impl Obstacle {
 /// with no curvature: neither is met by a body inside the hole and clear of the tube's core.
 fn ring(r: Vec3, axis: Vec3, big: f64, tube: f64) -> (f64, Vec3, nalgebra::Matrix3<f64>) {
     let tiny = f64::MIN_POSITIVE.sqrt();
-    let w = r - axis * axis.dot(&r);
+    let height = axis.dot(&r);
+    let w = r - axis * height;
     let rho = w.norm();
     let (rho_hat, bend) = if rho <= tiny * big {
         (
@@ -739,12 +740,14 @@ fn ring(r: Vec3, axis: Vec3, big: f64, tube: f64) -> (f64, Vec3, nalgebra::Matri
     } else {
         (w / rho, big / rho)
     };
-    let q = r - big * rho_hat;
-    let len = q.norm();
+    // `q = r - big rho_hat` from its two coordinates: near the axis `rho_hat` carries the
+    // rounding of `w` divided by `rho`, which would otherwise reach `d` itself.
+    let radial = rho - big;
+    let len = radial.hypot(height);
     if len <= tiny * tube {
         return (-tube, -rho_hat, nalgebra::Matrix3::zeros());
     }
-    let n = q / len;
+    let n = (radial * rho_hat + height * axis) / len;
     let identity = nalgebra::Matrix3::identity();
     let tangent = identity - axis * axis.transpose() - rho_hat * rho_hat.transpose();
     let h = (identity - n * n.transpose() - bend * tangent) / len;
