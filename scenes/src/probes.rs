@@ -344,15 +344,13 @@ mod tests {
     use super::*;
     use isochor_mesh::generate::box_grid;
 
-    /// A position probe reads the deformed coordinates: after a rigid translation by `t` of
-    /// the unit cube, the lowest z is `t_z`, the highest `1 + t_z`, the mean over the top
-    /// face `1 + t_z`, and the distance from the origin of the farthest corner `|(1,1,1) + t|`.
-    #[test]
-    fn position_probe_follows_a_rigid_translation() {
-        let scene = Scene::from_toml_str(
+    /// The unit cube of 2 x 2 x 2 cells (`standard`, E = 1e5, nu = 0.3) clamped at its
+    /// `bottom` selection, one quasi-static step; `extra` (TOML) adds the selections, `bottom`
+    /// among them, zones and probes.
+    fn unit_cube(extra: &str) -> Scene {
+        let text = format!(
             r#"
             name = "cube"
-            description = "unit cube"
             method = "standard"
             [mesh]
             generator = "box"
@@ -362,16 +360,50 @@ mod tests {
             [material]
             young = 1e5
             nu = 0.3
-            [selections.bottom]
-            plane = { point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }
-            [selections.top]
-            plane = { point = [0.0, 0.0, 1.0], normal = [0.0, 0.0, 1.0] }
             [[dirichlet]]
             selection = "bottom"
             axes = "xyz"
             [stepping]
             mode = "quasi-static"
             steps = 1
+            {extra}
+            "#
+        );
+        Scene::from_toml_str(&text, "test").unwrap()
+    }
+
+    /// The probes of `scene` with its mesh's nodes moved by `deform`.
+    fn probes_at(
+        scene: &Scene,
+        deform: impl Fn(&Vec3) -> Vec3,
+    ) -> Result<BTreeMap<String, f64>, SceneError> {
+        let mesh = crate::problem::build(scene).unwrap().problem.mesh;
+        let positions: Vec<Vec3> = mesh.nodes().iter().map(deform).collect();
+        evaluate(
+            scene,
+            &ProbeInput {
+                mesh: &mesh,
+                positions: &positions,
+                tet_pressures: &[],
+                constraint_residual: 0.0,
+                energies: Energies::default(),
+                kappa: None,
+                history: &[],
+            },
+        )
+    }
+
+    /// A position probe reads the deformed coordinates: after a rigid translation by `t` of
+    /// the unit cube, the lowest z is `t_z`, the highest `1 + t_z`, the mean over the top
+    /// face `1 + t_z`, and the distance from the origin of the farthest corner `|(1,1,1) + t|`.
+    #[test]
+    fn position_probe_follows_a_rigid_translation() {
+        let scene = unit_cube(
+            r#"
+            [selections.bottom]
+            plane = { point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }
+            [selections.top]
+            plane = { point = [0.0, 0.0, 1.0], normal = [0.0, 0.0, 1.0] }
             [probes.lowest]
             kind = "position"
             component = "z"
@@ -389,25 +421,9 @@ mod tests {
             component = "norm"
             reduce = "max"
             "#,
-            "test",
-        )
-        .unwrap();
-        let mesh = crate::problem::build(&scene).unwrap().problem.mesh;
+        );
         let t = Vec3::new(0.3, -0.2, -0.45);
-        let moved: Vec<Vec3> = mesh.nodes().iter().map(|p| p + t).collect();
-        let values = evaluate(
-            &scene,
-            &ProbeInput {
-                mesh: &mesh,
-                positions: &moved,
-                tet_pressures: &[],
-                constraint_residual: 0.0,
-                energies: Energies::default(),
-                kappa: None,
-                history: &[],
-            },
-        )
-        .unwrap();
+        let values = probes_at(&scene, |p| p + t).unwrap();
         // Sums of two exact binary fractions: equal to rounding.
         let close = |a: f64, b: f64| (a - b).abs() <= 4.0 * f64::EPSILON;
         assert!(close(values["lowest"], t.z), "{values:?}");
@@ -425,61 +441,25 @@ mod tests {
     /// its volume, the top one doubles it; a zone past the last is an error naming the count.
     #[test]
     fn zone_volume_change_reads_the_painted_zones() {
-        let text = |zone: usize| {
-            format!(
+        let change = |zone: usize| {
+            let scene = unit_cube(&format!(
                 r#"
-            name = "cube"
-            method = "standard"
-            [mesh]
-            generator = "box"
-            min = [0.0, 0.0, 0.0]
-            max = [1.0, 1.0, 1.0]
-            res = 2
-            [material]
-            young = 1e5
-            nu = 0.3
             [selections.bottom]
             box = {{ min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 0.5] }}
             surface = true
             [selections.top]
             box = {{ min = [0.0, 0.0, 0.5], max = [1.0, 1.0, 1.0] }}
             surface = true
-            [[dirichlet]]
-            selection = "bottom"
-            axes = "xyz"
             [zones]
             kind = "painted"
             paint = ["bottom", "top"]
-            [stepping]
-            mode = "quasi-static"
-            steps = 1
             [probes.zone]
             kind = "zone-volume-change"
             zone = {zone}
             "#
-            )
-        };
-        let change = |zone: usize| {
-            let scene = Scene::from_toml_str(&text(zone), "test").unwrap();
-            let mesh = crate::problem::build(&scene).unwrap().problem.mesh;
-            let stretched: Vec<Vec3> = mesh
-                .nodes()
-                .iter()
-                .map(|p| Vec3::new(p.x, p.y, p.z.max(2.0 * p.z - 0.5)))
-                .collect();
-            evaluate(
-                &scene,
-                &ProbeInput {
-                    mesh: &mesh,
-                    positions: &stretched,
-                    tet_pressures: &[],
-                    constraint_residual: 0.0,
-                    energies: Energies::default(),
-                    kappa: None,
-                    history: &[],
-                },
-            )
-            .map(|values| values["zone"])
+            ));
+            probes_at(&scene, |p| Vec3::new(p.x, p.y, p.z.max(2.0 * p.z - 0.5)))
+                .map(|values| values["zone"])
         };
         assert!(change(0).unwrap().abs() <= 4.0 * f64::EPSILON);
         assert!((change(1).unwrap() - 1.0).abs() <= 4.0 * f64::EPSILON);
