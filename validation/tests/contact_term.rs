@@ -1,7 +1,7 @@
 //! Finite-difference validation of the contact term (augmented-Lagrangian frictionless
 //! contact, sec. 8.2-8.3 of Francu et al. 2021): its gradient against central differences of
 //! its energy and its Hessian against central differences of its gradient, for half-spaces,
-//! spheres, cylinders and rings, moved obstacles and positive multipliers, away from the kink
+//! spheres, cylinders and rings, moved obstacles, positive multipliers and raised penalties, away from the kink
 //! `lambda = rho d` where the energy is only C1; the ring's signed distance, gradient and
 //! Hessian against differences of each other, near its axis and its tube's centre circle too;
 //! and the projected multiplier update, its convergence flag and the contact summary against
@@ -107,6 +107,7 @@ proptest! {
         rho in 0.5..50.0f64,
         before in prop::collection::vec(vec3(), 3),
         after in prop::collection::vec(vec3(), 3),
+        updates in 1..4usize,
     ) {
         // Vertex 1 is not a candidate: its row must stay zero.
         // A half-space has no radius to change.
@@ -121,9 +122,13 @@ proptest! {
             .collect();
         let term = Contact::new(vec![0, 2], obstacles.clone(), vec![rho, 2.0 * rho]);
         term.begin_step(LoadLevel::quasi_static(t));
-        // Multipliers from a projected update at another state: positive where that state
-        // penetrated.
-        term.update(&before, 0.0);
+        // Multipliers from projected updates at another state: positive where that state
+        // penetrated. Repeated at the same state a violation does not fall, so from the
+        // second update on the penalties grow: the derivatives hold at any penalty scale.
+        for _ in 0..updates {
+            term.update(&before, 0.0);
+        }
+        let rho = rho * term.penalty_scale();
         let lambda = term.multipliers();
         prop_assert!(lambda.iter().all(|&l| l >= 0.0));
         for (a, &v) in [0usize, 2].iter().enumerate() {
