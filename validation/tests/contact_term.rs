@@ -2,10 +2,10 @@
 //! contact, sec. 8.2-8.3 of Francu et al. 2021): its gradient against central differences of
 //! its energy and its Hessian against central differences of its gradient, for half-spaces,
 //! spheres, cylinders and rings, moved obstacles, positive multipliers and raised penalties,
-//! away from the kink `lambda = rho d` where the energy is only C1; the ring's signed distance, gradient and
-//! Hessian against differences of each other, near its axis and its tube's centre circle too;
-//! and the projected multiplier update, its convergence flag and the contact summary against
-//! their formulas.
+//! away from the kink `lambda = rho d` where the energy is only C1; the ring's signed
+//! distance, gradient and Hessian against differences of each other, near its axis and its
+//! tube's centre circle too; and the projected multiplier update, its convergence flag, the
+//! penalties' growth and the contact summary against their formulas.
 
 use isochor_mesh::Vec3;
 use isochor_solvers::terms::{Contact, EnergyTerm};
