@@ -5,14 +5,23 @@
 //! solvers, Newton on displacements (`standard`, `condensed`), saddle-point Newton (`mixed-*`,
 //! `zonal`), dual ascent (`dual`), quasi-static load stepping and implicit Euler.
 //!
-//! | module | what it holds |
-//! |---|---|
-//! | `model` | what is solved: the [`Problem`] a user states, its DOFs, and the model holding only the terms it names |
-//! | [`terms`] | the energy terms: elastic, loads, inertia, epidermis, contact, augmented constraints |
-//! | `assembly` | the assembled view the nonlinear solvers iterate on: fixed patterns, parallel refills |
-//! | `nonlinear` | Newton, saddle-point Newton and dual ascent, and the target of one step |
-//! | [`linear`] | sparse Cholesky, KKT `LDL^T`, CG and MINRES, orderings and shifts |
-//! | `simulation` | the stepping driver ([`Simulation`]: quasi-static and implicit Euler) and its reports |
+//! ## Layers
+//!
+//! The modules, from the bottom up; each imports only from the modules above it in this
+//! table, and from the module that defines an item (never through this crate's re-exports,
+//! which are its public face):
+//!
+//! | layer | module | what it holds |
+//! |---|---|---|
+//! | 0 | `error` | [`SolverError`] |
+//! | 1 | [`linear`] | sparse Cholesky, KKT `LDL^T`, CG and MINRES, orderings and shifts |
+//! | 2 | `settings` | [`Settings`]: Newton limits, tolerances, the linear solver, the volume projection |
+//! | 3 | `problem` | what a user states: the [`Problem`], its [`Method`], [`Material`]s, loads, motions, obstacles, [`Curve`]s |
+//! | 4 | [`terms`] | the energy terms: elastic, loads, inertia, epidermis, contact, augmented constraints |
+//! | 5 | `model` | the model built from a problem: its DOFs, the material of every element, only the terms it names |
+//! | 6 | `assembly` | the assembled view the nonlinear solvers iterate on: fixed patterns, parallel refills |
+//! | 7 | `nonlinear` | Newton, saddle-point Newton and dual ascent, the target of one step, the iteration reports |
+//! | 8 | `simulation` | the stepping driver ([`Simulation`]: quasi-static and implicit Euler), its state and outputs |
 //!
 //! A problem is stated with [`Problem::builder`] (or as a [`Problem`] literal), run by
 //! [`Simulation::run`], and measured with the probes of `isochor_mesh::probes`; the sparse
@@ -31,6 +40,7 @@ mod error;
 pub mod linear;
 mod model;
 mod nonlinear;
+mod problem;
 mod settings;
 mod simulation;
 pub mod terms;
@@ -41,18 +51,24 @@ pub use error::SolverError;
 pub use isochor_constraints::NodalCompliance;
 /// The mesh types a [`Problem`] holds and a [`State`] is read on.
 pub use isochor_mesh::{ElementMesh, TetMesh, Vec3, Zones};
-pub use model::{
-    Curve, Dirichlet, Dofs, Epidermis, Kappa, Load, LoadLevel, Material, MaterialModel, Method,
-    Motion, Obstacle, Problem, ProblemBuilder, Region, Regions, ScheduledLoad, Shape, ZonalEnergy,
-};
+pub use model::dofs::Dofs;
+pub use model::regions::Regions;
+pub use nonlinear::report::{IterationReport, StepReport, Timings};
+pub use problem::builder::ProblemBuilder;
+pub use problem::loads::{Dirichlet, Load, Motion, ScheduledLoad};
+pub use problem::material::{Epidermis, Kappa, Material, MaterialModel, ZonalEnergy};
+pub use problem::method::Method;
+pub use problem::obstacle::{Obstacle, Shape};
+pub use problem::schedule::{Curve, LoadLevel};
+pub use problem::{Problem, Region};
 pub use settings::{
-    IterativeSettings, LinearSolver, PreconditionerKind, Settings, AUTO_DIRECT_UNKNOWNS,
+    IterativeSettings, LinearSolver, PreconditionerKind, Settings, VolumeProjection,
+    AUTO_DIRECT_UNKNOWNS,
 };
 pub use simulation::{
     Adaptive, Checkpoint, Energies, Frame, Linearizer, Matrices, NewtonSystem, Progress,
-    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping, VolumeProjection,
+    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping,
 };
-pub use simulation::{IterationReport, StepReport, Timings};
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
 pub use sprs;
 pub use terms::ContactSummary;

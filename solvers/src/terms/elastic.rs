@@ -2,7 +2,8 @@
 //! integrated by quadrature), evaluated in parallel over elements.
 
 use super::{block_pattern, scatter, EnergyTerm};
-use crate::{LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 use isochor_energies::element::{self, RestPoints};
 use isochor_energies::{project_to_psd, Hyperelastic};
 use isochor_mesh::element::{deformation_gradient, RestGeometry, TetElement, TetQuadrature};
