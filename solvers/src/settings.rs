@@ -141,7 +141,7 @@ impl Default for Settings {
 /// Finite Element Simulations of Deformable Models"). Each vertex `i` of a 4-node tet mesh
 /// owns the volume of its one ring, `V_i(x) = sum_{e incident to i} V_e(x)`, rest value
 /// `V0_i`. `G = dV/dx` (one row per vertex) is four times the Jacobian of the nodal (P1)
-/// volume constraints, whose row `i` is `sum_e V_e (J_e - 1) / 4` ([`NodalConstraints`]);
+/// volume constraints, whose row `i` is `sum_e V_e (J_e - 1) / 4` ([`NodalConstraints`](isochor_constraints::NodalConstraints));
 /// on 10-node tets the same rows define `V_i = 4 integral L_i J dV` (`L_i` the corner's
 /// linear shape function), the one-ring volume on 4-node tets.
 /// `W` is the inverse lumped mass per DOF, zero on prescribed DOFs (they do not move). After
@@ -164,7 +164,7 @@ impl Default for Settings {
 /// semi-implicit one, the clamp is relative to each one ring's rest volume, both solves use
 /// one linearization each (no iteration to the exact volume), and contact is not part of the
 /// pressure solve. A one ring whose vertices are all prescribed is left as it is. On
-/// structured boxes `G` has spurious pressure modes (`G^T q = 0`, see [`NodalConstraints`]),
+/// structured boxes `G` has spurious pressure modes (`G^T q = 0`, see [`NodalConstraints`](isochor_constraints::NodalConstraints)),
 /// so `A` is factored with the diagonal shift `1e-8 max A_ii`: a shifted mode moves no
 /// vertex, and the other pressures change by at most that shift over `A`'s smallest nonzero
 /// eigenvalue, relatively.

@@ -12,8 +12,8 @@ use crate::terms::{
     FollowerPressure,
 };
 use isochor_constraints::{
-    exact_rule, Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance,
-    NodalConstraints, ZonalConstraints,
+    exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+    PerElementConstraints, ZonalConstraints,
 };
 use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
@@ -189,7 +189,7 @@ impl Model {
                 } else {
                     Measure::Logarithmic
                 };
-                constraints = Some(Arc::new(ElementConstraints::on_regions(
+                constraints = Some(Arc::new(PerElementConstraints::on_regions(
                     &mesh, rule, measure, &kappa,
                 )?));
                 NonlinearScheme::SaddleDirect

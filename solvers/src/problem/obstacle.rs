@@ -55,7 +55,7 @@ pub enum Shape {
 
 /// A rigid obstacle: a shape translated by `t * translate` and with its radius changed by
 /// `t * radius_change`, with `t` the load parameter (quasi-static), `time / duration`
-/// (dynamics) or the value of its curve, like a [`Motion::Translate`] condition.
+/// (dynamics) or the value of its curve, like a [`Motion::Translate`](crate::Motion::Translate) condition.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Obstacle {
     /// The shape at `t = 0`.

@@ -58,7 +58,7 @@ impl Simulation {
         })
     }
 
-    /// Continues from `checkpoint` (taken from a [`Frame`] of a run of this problem with the
+    /// Continues from `checkpoint` (taken from a [`Frame`](crate::Frame) of a run of this problem with the
     /// same stepping): the next [`Self::run`] starts where that run stood, and gives the
     /// results the uninterrupted run gives, bit for bit.
     pub fn restore(&mut self, checkpoint: Checkpoint) -> Result<(), SolverError> {

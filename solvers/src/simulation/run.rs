@@ -5,7 +5,7 @@
 use super::state::{Frame, RunSummary, SimulationFailure, State};
 use super::stepper::{Attempt, Progress, Stepper};
 use super::stepping::{check_stepping, Stepping};
-use super::volume_projection::Projector;
+use super::volume_projection::VolumeProjector;
 use super::Simulation;
 use crate::assembly::System;
 use crate::error::SolverError;
@@ -126,7 +126,7 @@ impl Simulation {
                 "a volume projection applies to implicit Euler only: it corrects the state after each time step".into(),
             ));
         }
-        let projector = Projector::new(
+        let projector = VolumeProjector::new(
             self.settings.volume_projection,
             &self.model.mesh,
             &self.model.masses,
@@ -153,7 +153,7 @@ struct RunPlan {
     /// The time step (`None`: quasi-static).
     dt: Option<f64>,
     /// The volume projection after each step.
-    projector: Projector,
+    projector: VolumeProjector,
     /// The absolute force tolerance of the nonlinear solves.
     force_tolerance: f64,
     /// The absolute penetration tolerance of the contact updates.

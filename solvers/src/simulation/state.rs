@@ -9,7 +9,7 @@ use nalgebra::Matrix3;
 use std::time::Duration;
 
 /// What continues an interrupted run exactly: the state, where the stepping stood, and the
-/// contact multipliers (see [`Simulation::restore`]).
+/// contact multipliers (see [`Simulation::restore`](crate::Simulation::restore)).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Checkpoint {
     /// The last accepted state.

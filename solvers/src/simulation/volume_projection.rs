@@ -26,7 +26,7 @@ const RESCALE_ITERATIONS: usize = 50;
 
 /// A [`VolumeProjection`] set up on a mesh.
 #[derive(Debug)]
-pub struct Projector {
+pub struct VolumeProjector {
     kind: Kind,
     /// Inverse lumped mass of every DOF (`3 node + axis`), zero where prescribed.
     inverse_masses: Vec<f64>,
@@ -47,7 +47,7 @@ enum Kind {
     },
 }
 
-impl Projector {
+impl VolumeProjector {
     /// `projection` on `mesh` with lumped `masses` (one per node) and the DOFs `dofs`; pressure
     /// matrices are factored under `ordering`.
     ///
@@ -90,7 +90,7 @@ impl Projector {
                 rest_volume: mesh.total_volume_at(mesh.nodes()),
             },
         };
-        Ok(Projector {
+        Ok(VolumeProjector {
             kind,
             inverse_masses,
             ordering,
@@ -294,7 +294,11 @@ mod tests {
         (0..n).map(|i| 1.0 + 0.5 * (i as f64).sin()).collect()
     }
 
-    fn projector(projection: VolumeProjection, mesh: &ElementMesh, fixed: &[usize]) -> Projector {
+    fn projector(
+        projection: VolumeProjection,
+        mesh: &ElementMesh,
+        fixed: &[usize],
+    ) -> VolumeProjector {
         let conditions = [Dirichlet {
             nodes: fixed.to_vec(),
             axes: [true; 3],
@@ -302,7 +306,7 @@ mod tests {
             curve: None,
         }];
         let dofs = Dofs::new(mesh.num_nodes(), &conditions).unwrap();
-        Projector::new(
+        VolumeProjector::new(
             projection,
             mesh,
             &masses(mesh.num_nodes()),
@@ -323,7 +327,7 @@ mod tests {
     /// (2-norm): `A p = b - s p`, so the miss is `s |(A + s)^-1 b| <= s / lambda_min |b|`,
     /// `lambda_min` the smallest nonzero eigenvalue of `A` (its zero ones, the spurious
     /// modes, are orthogonal to every right-hand side of these tests).
-    fn shift_miss(p: &Projector, x: &[Vec3], b: &[f64]) -> f64 {
+    fn shift_miss(p: &VolumeProjector, x: &[Vec3], b: &[f64]) -> f64 {
         let Kind::OneRing { constraints, .. } = &p.kind else {
             unreachable!()
         };
