@@ -188,6 +188,88 @@ impl Material {
         Ok(material)
     }
 
+    /// A material of a model with its own constants ([`MaterialModel::MooneyRivlin`],
+    /// [`MaterialModel::Yeoh`], [`MaterialModel::Ogden`]): `mu` is the initial shear modulus
+    /// they set, Poisson's ratio `nu` gives the volumetric stiffness, and the other
+    /// parameters are the defaults of [`Material::from_young_poisson`] at `E = 2 mu (1 + nu)`.
+    ///
+    /// Errors: a model whose parameter is `mu` itself (state it with
+    /// [`Material::from_young_poisson`] and [`Material::with_model`]), or constants that give
+    /// no positive shear modulus.
+    ///
+    /// ```
+    /// use isochor_solvers::{Material, MaterialModel};
+    ///
+    /// let terms = vec![(2e4, 2.0), (-1e3, -2.0)];
+    /// let rubber = Material::from_model(MaterialModel::Ogden { terms }, 0.49, 1100.0)?;
+    /// assert!((rubber.mu - 0.5 * (2e4 * 2.0 + 1e3 * 2.0)).abs() < 1e-9);
+    /// assert!(Material::from_model(MaterialModel::NeoHookean, 0.49, 1100.0).is_err());
+    /// # Ok::<(), isochor_energies::ParameterError>(())
+    /// ```
+    pub fn from_model(model: MaterialModel, nu: f64, density: f64) -> Result<Self, ParameterError> {
+        model.validate()?;
+        let mu = model.shear_modulus().ok_or(ParameterError {
+            name: "model",
+            value: f64::NAN,
+            reason: "this model's parameter is mu: use Material::from_young_poisson",
+        })?;
+        if !(mu.is_finite() && mu > 0.0) {
+            return Err(ParameterError {
+                name: "mu",
+                value: mu,
+                reason: "the model's constants must give a finite, positive initial shear modulus",
+            });
+        }
+        Material::from_young_poisson(2.0 * mu * (1.0 + nu), nu, density)?.with_model(model)
+    }
+
+    /// A Mooney-Rivlin material `c10 (Ib1 - 3) + c01 (Ib2 - 3)` (Pa) with Poisson's ratio `nu`
+    /// and density `density` (see [`Material::from_model`]).
+    ///
+    /// ```
+    /// use isochor_solvers::Material;
+    ///
+    /// let silicone = Material::mooney_rivlin(1.2e4, 3e3, 0.499, 1070.0)?;
+    /// assert!((silicone.mu - 3e4).abs() < 1e-9); // mu = 2 (c10 + c01)
+    /// # Ok::<(), isochor_energies::ParameterError>(())
+    /// ```
+    pub fn mooney_rivlin(
+        c10: f64,
+        c01: f64,
+        nu: f64,
+        density: f64,
+    ) -> Result<Self, ParameterError> {
+        Material::from_model(MaterialModel::MooneyRivlin { c10, c01 }, nu, density)
+    }
+
+    /// A Yeoh material `c10 (Ib1 - 3) + c20 (Ib1 - 3)^2 + c30 (Ib1 - 3)^3` (Pa) with Poisson's
+    /// ratio `nu` and density `density` (see [`Material::from_model`]).
+    ///
+    /// ```
+    /// use isochor_solvers::Material;
+    ///
+    /// // Ecoflex-like constants; no Young's modulus is needed.
+    /// let ecoflex = Material::yeoh(1.1e4, 2.0e2, 0.0, 0.499, 1070.0)?;
+    /// assert!((ecoflex.mu - 2.2e4).abs() < 1e-9); // mu = 2 c10
+    /// assert!(Material::yeoh(-1.0, 0.0, 0.0, 0.499, 1070.0).is_err());
+    /// # Ok::<(), isochor_energies::ParameterError>(())
+    /// ```
+    pub fn yeoh(
+        c10: f64,
+        c20: f64,
+        c30: f64,
+        nu: f64,
+        density: f64,
+    ) -> Result<Self, ParameterError> {
+        Material::from_model(MaterialModel::Yeoh { c10, c20, c30 }, nu, density)
+    }
+
+    /// An Ogden material with the terms `(mu_p, alpha_p)` (Pa, dimensionless), Poisson's ratio
+    /// `nu` and density `density` (see [`Material::from_model`]).
+    pub fn ogden(terms: Vec<(f64, f64)>, nu: f64, density: f64) -> Result<Self, ParameterError> {
+        Material::from_model(MaterialModel::Ogden { terms }, nu, density)
+    }
+
     /// The same material with `model`: a model with constants sets `mu` (and the default
     /// zonal `lambda`, equivalent to `nu = 0.45`) from them; set other parameters after.
     ///
