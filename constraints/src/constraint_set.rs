@@ -6,7 +6,7 @@ use isochor_mesh::Vec3;
 /// The compliance matrix `C` of a constraint set (eq. 18 of Francu et al. 2021).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Compliance {
-    /// Diagonal `C` (element constraints, lumped nodal constraints, hard constraints as zeros).
+    /// Diagonal `C` (per-element constraints, lumped nodal constraints, hard constraints as zeros).
     Diagonal(Vec<f64>),
     /// General symmetric `C` as `(row, col, value)` triplets, both triangles present,
     /// duplicates summed (consistent nodal compliance).

@@ -7,8 +7,8 @@
 //!
 //! - [`Measure`]: linear `J - 1` or logarithmic `log J` (sec. 6), a density of `F` whose
 //!   integrals over the elements, by quadrature, make every constraint row; its derivatives
-//!   come from the element kernel of `isochor-energies`, the one chain rule of both crates.
-//! - [`ElementConstraints`] (P0, sec. 4.6), [`NodalConstraints`] (P1 on the corners, eq. 27,
+//!   come from the quadrature kernel of `isochor-energies`, the one chain rule of both crates.
+//! - [`PerElementConstraints`] (P0, sec. 4.6), [`NodalConstraints`] (P1 on the corners, eq. 27,
 //!   consistent or lumped compliance; Taylor-Hood P2-P1 on 10-node tets) and
 //!   [`ZonalConstraints`] (Sheen et al. eq. 6-9). Each has a constructor on a linear
 //!   [`isochor_mesh::TetMesh`] (the one-point rule) and one on an element mesh with a
@@ -22,16 +22,20 @@
 #![deny(missing_docs)]
 
 mod constraint_set;
-mod element;
 mod error;
 mod matrix;
 mod measure;
 mod measured;
 mod nodal;
+mod per_element;
 mod zonal;
 
 pub use constraint_set::{Compliance, ConstraintSet};
-pub use element::ElementConstraints;
+pub use per_element::PerElementConstraints;
+
+/// The per-element (P0) constraint set under its old name.
+#[deprecated(note = "renamed to `PerElementConstraints`")]
+pub type ElementConstraints = PerElementConstraints;
 pub use error::ConstraintError;
 pub use matrix::{geometric_stiffness_matrix, jacobian_matrix, SparseMatrix};
 pub use measure::Measure;

@@ -11,7 +11,7 @@ use nalgebra::Matrix3;
 ///
 /// `Phi(det F)` is a density of `F`: as a [`Hyperelastic`] its "stress" is
 /// `Phi'(J) cof F` and its tangent `Phi''(J) vec(cof F) vec(cof F)^T + Phi'(J) d2J/dF2`, so
-/// the element kernel of `isochor-energies` integrates it and its derivatives.
+/// the quadrature kernel of `isochor-energies` integrates it and its derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Measure {
     /// `Phi = J - 1`, so a 4-node tet contributes `v_e - V_e` (sec. 4.6). Defined for every

@@ -6,11 +6,11 @@
 //! Every constraint row is a sum of element integrals `integral_e c(xi) Phi(J) dV`, evaluated
 //! as `sum_q W_q c(xi_q) Phi(J_q)` with `W_q = w_q det(dX/dxi)(xi_q)`, where the row's shape
 //! `c` is one of [`Shapes`]. `Phi(det F)` is a density like an energy's, so its derivatives
-//! come from the element kernel of `isochor-energies` ([`element::evaluate`]): the
+//! come from the quadrature kernel of `isochor-energies` ([`kernel::evaluate`]): the
 //! constraints have no chain rule of their own.
 
 use crate::{ConstraintError, Measure};
-use isochor_energies::element::{self, RestPoints};
+use isochor_energies::kernel::{self, RestPoints};
 use isochor_mesh::element::{deformation_gradient, RestGeometry, TetElement, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3};
 use rayon::prelude::*;
@@ -156,7 +156,7 @@ impl MeasuredElements {
         check_len("positions", self.num_nodes, x.len())
     }
 
-    /// The rest data of element `e` for the element kernel.
+    /// The rest data of element `e` for the quadrature kernel.
     fn rest_points(&self, e: usize) -> RestPoints<'_> {
         RestPoints {
             weights: self.geometry.element_weights(e),
@@ -212,7 +212,7 @@ impl MeasuredElements {
         }
     }
 
-    /// The element kernel for element `e` and the given rest data.
+    /// The quadrature kernel for element `e` and the given rest data.
     fn kernel(
         &self,
         e: usize,
@@ -221,7 +221,7 @@ impl MeasuredElements {
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, ConstraintError> {
-        element::evaluate(&self.measure, x, self.nodes(e), rest, gradient, hessian).map_err(|err| {
+        kernel::evaluate(&self.measure, x, self.nodes(e), rest, gradient, hessian).map_err(|err| {
             ConstraintError::NonPositiveVolumeRatio {
                 element: e,
                 j: err.j,

@@ -3,7 +3,7 @@
 //! 4-point rule of the elastic terms).
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use isochor_energies::element::{self, RestPoints};
+use isochor_energies::kernel::{self, RestPoints};
 use isochor_energies::{
     constrained_neo_hookean, quadratic_neo_hookean, standard_neo_hookean, tet, BonetWood,
     DistortionalNeoHookean, FbarNeoHookean, Hyperelastic, Lame, Mooney, MooneyRivlin,
@@ -145,7 +145,7 @@ fn tet_hessians(c: &mut Criterion) {
                 b.iter(|| {
                     for x in &x10 {
                         let (g, h) = (Some(g.as_mut_slice()), Some(h.as_mut_slice()));
-                        black_box(element::evaluate(m, black_box(x), nodes, points, g, h).unwrap());
+                        black_box(kernel::evaluate(m, black_box(x), nodes, points, g, h).unwrap());
                     }
                 })
             },

@@ -1,7 +1,7 @@
 //! The epidermis surface energy, eq. 16 of Sheen et al. 2021, on 3- and 6-node faces by
 //! quadrature; a 3-node face with the one-point rule is the case `n = 3` of the same code.
 
-use crate::element::mirror_lower;
+use crate::kernel::mirror_lower;
 use crate::parameters::require;
 use crate::penalties::SheenPenalty;
 use crate::triangle::{add_area_terms, RestFacePoints, RestTriangle};

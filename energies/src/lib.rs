@@ -2,7 +2,7 @@
 //!
 //! Pure functions of the deformation: hyperelastic energy densities `Psi(F)`, their first
 //! Piola-Kirchhoff stress `P = dPsi/dF` and its derivative `dP/dF`, volumetric penalties
-//! `U(J)`, and the element kernels that turn them into per-tet and per-triangle energies,
+//! `U(J)`, and the quadrature kernels that turn them into per-tet and per-triangle energies,
 //! gradients and Hessians.
 //!
 //! Conventions used throughout:
@@ -26,7 +26,7 @@
 //! - [`Composed`] `Psi_dev + lambda U(J)`: [`standard_neo_hookean`], [`quadratic_neo_hookean`],
 //!   [`constrained_neo_hookean`], [`stable_neo_hookean`] and
 //!   [`StableNeoHookean::from_linear_lame`] (Smith et al. 2018);
-//! - kernels: [`element`] (the quadrature element kernel: energy `sum_q w_q Psi(F_q)`, gradient
+//! - kernels: [`kernel`] (the quadrature kernel: energy `sum_q w_q Psi(F_q)`, gradient
 //!   and Hessian of an element of any number of nodes, 4- and 10-node tets), [`tet`] (its
 //!   one-point 4-node case with fixed-size types), [`triangle`] (the area element and `J~` of
 //!   3- and 6-node faces), [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
@@ -38,15 +38,15 @@
 #![deny(missing_docs)]
 
 mod composed;
-pub mod element;
 mod epidermis;
 mod error;
+pub mod kernel;
 pub mod kinematics;
 mod material;
 mod materials;
 mod parameters;
 mod penalties;
-mod projection;
+mod psd_projection;
 pub mod tet;
 pub mod triangle;
 
@@ -63,7 +63,15 @@ pub use materials::{
 };
 pub use parameters::{bulk_modulus, Lame};
 pub use penalties::{LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty};
-pub use projection::project_to_psd;
+pub use psd_projection::project_to_psd;
+
+/// The quadrature kernel under its old name.
+#[deprecated(
+    note = "renamed to `kernel` (the quadrature kernel; `element` is the mesh's reference element)"
+)]
+pub mod element {
+    pub use crate::kernel::{evaluate, RestPoints};
+}
 
 /// 9x9 matrix: `dP/dF` in column-major flattening.
 pub type Matrix9 = nalgebra::SMatrix<f64, 9, 9>;

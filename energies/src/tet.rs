@@ -1,12 +1,12 @@
 //! Linear tetrahedron kernels: `F = D_s D_m^-1`, `dF/dx`, and the element energy
 //! `V_e Psi(F)` (eq. 2 of Sheen et al. 2021) with its gradient and Hessian.
 //!
-//! A 4-node tet is the one-point case of the quadrature element kernel
-//! ([`crate::element::evaluate`]): one point of weight `V_e` where the shape gradients are
+//! A 4-node tet is the one-point case of the quadrature kernel
+//! ([`crate::kernel::evaluate`]): one point of weight `V_e` where the shape gradients are
 //! the constant `grad N_a` of [`shape_gradients`]. Every function here is that kernel with
 //! fixed-size arguments and results.
 
-use crate::element::{self, RestPoints};
+use crate::kernel::{self, RestPoints};
 use crate::{Hyperelastic, Matrix12, OutOfDomain, Vector12};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
@@ -56,7 +56,7 @@ pub fn deformation_jacobian(dm_inv: &Matrix3<f64>) -> DeformationJacobian {
     d
 }
 
-/// The element kernel on one tet: one point of weight `volume`.
+/// The quadrature kernel on one tet: one point of weight `volume`.
 fn evaluate<M: Hyperelastic + ?Sized>(
     material: &M,
     x: &[Vector3<f64>; 4],
@@ -69,7 +69,7 @@ fn evaluate<M: Hyperelastic + ?Sized>(
         weights: &[volume],
         gradients: &shape_gradients(dm_inv),
     };
-    element::evaluate(
+    kernel::evaluate(
         material,
         x,
         &NODES,

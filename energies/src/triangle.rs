@@ -116,7 +116,7 @@ pub fn area_ratio_derivatives(x: &[Vector3<f64>; 3], rest: &RestTriangle) -> Are
         Some(gradient.as_mut_slice()),
         Some(hessian.as_mut_slice()),
     );
-    crate::element::mirror_lower(hessian.as_mut_slice(), 9);
+    crate::kernel::mirror_lower(hessian.as_mut_slice(), 9);
     AreaRatio {
         value: s / areas[0],
         gradient,

@@ -2,8 +2,9 @@
 //! iteration refills a flat value buffer in parallel (each term writes its own slice, each
 //! element its own chunk) and gathers the free-free entries into the fixed pattern.
 
+use crate::error::SolverError;
 use crate::linear::{SparsityPattern, Triangle};
-use crate::{Dofs, SolverError};
+use crate::model::dofs::Dofs;
 use faer::sparse::SparseColMat;
 
 /// Maps the entries of a list of `(row, col)` pairs (with `row` and `col` full-space indices

@@ -5,9 +5,11 @@
 
 mod layout;
 
+use crate::error::SolverError;
 use crate::model::{Model, NonlinearScheme};
+use crate::problem::schedule::LoadLevel;
+use crate::settings::Settings;
 use crate::terms::{EnergyTerm, Inertia};
-use crate::{LoadLevel, Settings, SolverError};
 use isochor_mesh::Vec3;
 use layout::Layout;
 use std::time::{Duration, Instant};

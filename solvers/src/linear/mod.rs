@@ -6,7 +6,7 @@
 //! incomplete Cholesky, smoothed-aggregation multigrid, and the block-diagonal
 //! saddle-point preconditioner.
 //!
-//! Symmetric matrices are given with both triangles (as the element kernels emit them)
+//! Symmetric matrices are given with both triangles (as the quadrature kernels emit them)
 //! or only the lower one; the factorizations read the lower triangle (`row >= col`).
 //!
 //! Typical use in a Newton loop (patterns and symbolic factorizations built once):

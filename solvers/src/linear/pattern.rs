@@ -13,7 +13,7 @@ pub enum Triangle {
     /// Every entry (general matrices such as `G`).
     Full,
     /// Only `row >= col` of a square symmetric matrix given with both triangles, as the
-    /// element kernels emit it. The factorizations of this module read the lower
+    /// quadrature kernels emit it. The factorizations of this module read the lower
     /// triangle (`faer::Side::Lower`); entries above the diagonal are skipped on refill.
     Lower,
 }

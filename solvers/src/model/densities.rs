@@ -2,8 +2,9 @@
 //! `standard`, the model's distortional part for the methods whose volume response comes from
 //! constraints, that part plus `lambda U(J; beta)` of Sheen et al. 2021 for `zonal`.
 
-use super::{Material, MaterialModel, Method, ZonalEnergy};
-use crate::SolverError;
+use crate::error::SolverError;
+use crate::problem::material::{Material, MaterialModel, ZonalEnergy};
+use crate::problem::method::Method;
 use isochor_energies::{
     constrained_neo_hookean, standard_neo_hookean, BonetWood, Composed, DistortionalNeoHookean,
     DistortionalStableNeoHookean, Hyperelastic, LogPenalty, MooneyRivlin, Ogden, SheenPenalty,

@@ -1,7 +1,9 @@
 //! Degrees of freedom: which position components are unknowns and which are prescribed by
 //! Dirichlet conditions (removed from the linear systems, sec. 8.2 of Francu et al. 2021).
 
-use crate::{Dirichlet, LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::loads::Dirichlet;
+use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 
 /// Sentinel for a prescribed DOF in [`Dofs::free_index`].

@@ -1,38 +1,31 @@
-//! What is solved: the [`Problem`] a user states, its [`Dofs`], and the model built from it,
-//! which holds only the terms the problem names: the elastic energy of its method, the loads
-//! it lists, the constraint set of a mixed or zonal method, the lumped masses.
+//! The model built from a [`Problem`]: its [`Dofs`], the material of every element, and only
+//! the terms the problem names: the elastic energy of its method, the loads it lists, the
+//! constraint set of a mixed or zonal method, the lumped masses.
 
+use crate::error::SolverError;
+use crate::problem::loads::{Load, ScheduledLoad};
+use crate::problem::material::ZonalEnergy;
+use crate::problem::method::Method;
+use crate::problem::Problem;
 use crate::terms::{
     AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces,
     FollowerPressure,
 };
-use crate::SolverError;
 use isochor_constraints::{
-    exact_rule, Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance,
-    NodalConstraints, ZonalConstraints,
+    exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+    PerElementConstraints, ZonalConstraints,
 };
 use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
 
-mod builder;
 mod densities;
-mod dofs;
-mod problem;
-mod regions;
-mod schedule;
-mod supports;
-mod validate;
+pub mod dofs;
+pub mod regions;
 
-pub use builder::ProblemBuilder;
 use densities::elastic_density;
-pub use dofs::Dofs;
-pub use problem::{
-    Dirichlet, Epidermis, Kappa, Load, Material, MaterialModel, Method, Motion, Obstacle, Problem,
-    Region, ScheduledLoad, Shape, ZonalEnergy,
-};
-pub use regions::Regions;
-pub use schedule::{Curve, LoadLevel};
+use dofs::Dofs;
+use regions::Regions;
 
 /// How the nonlinear problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -196,7 +189,7 @@ impl Model {
                 } else {
                     Measure::Logarithmic
                 };
-                constraints = Some(Arc::new(ElementConstraints::on_regions(
+                constraints = Some(Arc::new(PerElementConstraints::on_regions(
                     &mesh, rule, measure, &kappa,
                 )?));
                 NonlinearScheme::SaddleDirect

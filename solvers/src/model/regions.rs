@@ -1,7 +1,8 @@
 //! The material of every element: the body's, or that of the [`Region`] claiming it.
 
-use super::{Material, Region};
-use crate::SolverError;
+use crate::error::SolverError;
+use crate::problem::material::Material;
+use crate::problem::Region;
 use isochor_energies::Hyperelastic;
 use isochor_mesh::ElementMesh;
 use std::sync::Arc;

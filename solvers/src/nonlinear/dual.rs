@@ -11,9 +11,10 @@
 //! [`crate::terms::AugmentedConstraints`]).
 
 use crate::assembly::System;
+use crate::error::SolverError;
 use crate::nonlinear::newton::Newton;
+use crate::nonlinear::report::{IterationReport, StepReport};
 use crate::nonlinear::target::{max_abs, volume_error, StepTarget};
-use crate::{IterationReport, SolverError, StepReport};
 use isochor_constraints::Compliance;
 use isochor_mesh::Vec3;
 use std::time::Instant;

@@ -6,7 +6,7 @@ use crate::linear::{
     LinearOperator, NearNullSpace, Preconditioner, SaddlePoint, SmoothedAggregation,
     SymmetricLower,
 };
-use crate::{IterativeSettings, PreconditionerKind};
+use crate::settings::{IterativeSettings, PreconditionerKind};
 use faer::sparse::SparseColMatRef;
 
 /// The SPD preconditioner of the stiffness block `K` (lower triangle) that `kind` names;

@@ -6,5 +6,6 @@ pub mod dual;
 pub mod forcing;
 pub mod krylov;
 pub mod newton;
+pub mod report;
 pub mod saddle;
 pub mod target;

@@ -4,14 +4,15 @@
 //! elements under `log J`) and enforces sufficient decrease (Armijo).
 
 use crate::assembly::{Evaluation, System};
+use crate::error::SolverError;
 use crate::linear::NearNullSpace;
 use crate::linear::{CholeskySolver, ShiftSchedule};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
 use crate::nonlinear::krylov::{solve_stiffness, StiffnessPreconditioner};
+use crate::nonlinear::report::{IterationReport, StepReport};
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::IterativeSettings;
-use crate::{IterationReport, SolverError, StepReport};
+use crate::settings::IterativeSettings;
 use faer::sparse::SparseColMat;
 use isochor_mesh::Vec3;
 use std::time::Instant;

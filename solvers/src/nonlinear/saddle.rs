@@ -12,14 +12,17 @@
 //! outside the domain of the energy or the constraints.
 
 use crate::assembly::System;
+use crate::error::SolverError;
 use crate::linear::{CholeskySolver, KktOptions, KktSolver, NearNullSpace, ShiftSchedule};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
 use crate::nonlinear::krylov::{solve_saddle, SaddleSystem, StiffnessPreconditioner};
+use crate::nonlinear::report::{IterationReport, StepReport};
 use crate::nonlinear::target::{
     add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
 };
-use crate::{IterationReport, IterativeSettings, LoadLevel, SolverError, StepReport};
+use crate::problem::schedule::LoadLevel;
+use crate::settings::IterativeSettings;
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, DVector};

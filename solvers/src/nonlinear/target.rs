@@ -1,6 +1,6 @@
 //! What one step asks of a nonlinear solver, and small vector helpers shared by them.
 
-use crate::LoadLevel;
+use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 
 /// The goal of one load or time step.

@@ -2,8 +2,11 @@
 //! `sprs::CsMat`, the crate's interchange type (faer stays the solvers' own type), with
 //! MatrixMarket export.
 
-use super::{Linearizer, Simulation, Sparse, State};
-use crate::{LoadLevel, SolverError};
+use super::linearize::{Linearizer, Sparse};
+use super::state::State;
+use super::Simulation;
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 use sprs::{CsMat, TriMat};
 use std::path::Path;
 

@@ -2,8 +2,9 @@
 //! in quasi-static stepping the corners of the load curves), halved when a step fails and
 //! doubled again after easy steps.
 
-use super::Stepping;
-use crate::{LoadLevel, SolverError};
+use super::stepping::Stepping;
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 
 /// How quasi-static increments are chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]

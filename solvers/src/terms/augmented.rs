@@ -9,7 +9,8 @@
 //!   fixed point `phi = C p`, the gradient is `G^T p`, so the solution is the mixed one.
 
 use super::EnergyTerm;
-use crate::{LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 use isochor_constraints::ConstraintSet;
 use isochor_mesh::Vec3;
 use std::sync::{Arc, RwLock};

@@ -26,7 +26,9 @@
 //! one multiplies every penalty by 10 for the rest of the step (at most 10^3 times the base).
 
 use super::EnergyTerm;
-use crate::{LoadLevel, Obstacle, SolverError};
+use crate::error::SolverError;
+use crate::problem::obstacle::Obstacle;
+use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 use nalgebra::Matrix3;
 use std::sync::{RwLock, RwLockWriteGuard};

@@ -5,7 +5,8 @@
 //! node and nothing at the corners).
 
 use super::{EnergyTerm, Faces};
-use crate::{Curve, LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::{Curve, LoadLevel};
 use isochor_mesh::Vec3;
 
 /// Constant nodal forces.

@@ -2,8 +2,9 @@
 //! integrated by quadrature), evaluated in parallel over elements.
 
 use super::{block_pattern, scatter, EnergyTerm};
-use crate::{LoadLevel, SolverError};
-use isochor_energies::element::{self, RestPoints};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
+use isochor_energies::kernel::{self, RestPoints};
 use isochor_energies::{project_to_psd, Hyperelastic};
 use isochor_mesh::element::{deformation_gradient, RestGeometry, TetElement, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3};
@@ -121,7 +122,7 @@ impl Elastic {
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         let material = self.material(e);
-        let energy = element::evaluate(
+        let energy = kernel::evaluate(
             material,
             x,
             self.nodes(e),

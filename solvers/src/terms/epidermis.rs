@@ -3,7 +3,8 @@
 //! 6-node boundary faces of the mesh.
 
 use super::{block_pattern, scatter, EnergyTerm, Faces};
-use crate::{LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 use isochor_energies::triangle::{area_element, RestFacePoints};
 use isochor_energies::Epidermis;
 use isochor_mesh::{ElementMesh, Vec3};

@@ -2,7 +2,7 @@
 //! triangles with the quadrature rule they are integrated with and its reference shape
 //! functions.
 
-use crate::SolverError;
+use crate::error::SolverError;
 use isochor_mesh::element::{TriElement, TriQuadrature};
 use isochor_mesh::{ElementMesh, Vec3};
 use nalgebra::Vector2;

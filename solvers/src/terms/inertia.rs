@@ -2,7 +2,8 @@
 //! of Francu et al. 2021) with a lumped mass matrix.
 
 use super::EnergyTerm;
-use crate::{LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 
 /// Inertia of one implicit Euler step.

@@ -20,7 +20,8 @@ pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
 
-use crate::{LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 
 /// A term of the total energy `E(x)` minimized (or made stationary) by the solvers.

@@ -10,7 +10,8 @@
 //! the chamber inflates).
 
 use super::{block_pattern, scatter, EnergyTerm, Faces};
-use crate::{Curve, LoadLevel, SolverError};
+use crate::error::SolverError;
+use crate::problem::schedule::{Curve, LoadLevel};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, Matrix3};
 

@@ -87,7 +87,9 @@ fn givens_update(r: &mut Matrix6<f64>, mut row: Vector6<f64>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Material, Method, Obstacle, Shape};
+    use crate::problem::material::Material;
+    use crate::problem::method::Method;
+    use crate::problem::obstacle::{Obstacle, Shape};
     use isochor_mesh::{generate, ElementMesh};
 
     /// A 3 x 2 x 2 box grid and the vertices on its faces.

@@ -2,8 +2,9 @@
 //! range and every number is usable, so that a bad input is an error naming the index rather
 //! than a panic deep in assembly.
 
-use super::problem::{Load, Problem};
-use crate::SolverError;
+use super::loads::Load;
+use super::Problem;
+use crate::error::SolverError;
 
 impl Problem {
     /// Checks what can be checked without building the model: the material's parameters,
@@ -23,7 +24,7 @@ impl Problem {
             }
         }
         let vertices = self.mesh.num_vertices();
-        let finite = |v: &crate::Vec3| v.iter().all(|c| c.is_finite());
+        let finite = |v: &isochor_mesh::Vec3| v.iter().all(|c| c.is_finite());
         for (l, scheduled) in self.loads.iter().enumerate() {
             let (faces, usable) = match &scheduled.load {
                 Load::Gravity(g) => (&[][..], finite(g)),

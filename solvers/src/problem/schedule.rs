@@ -4,7 +4,7 @@
 //! (quasi-static) or of time in seconds (dynamics), so that a chamber can be inflated, held
 //! and deflated, or an obstacle can squeeze and release.
 
-use crate::SolverError;
+use crate::error::SolverError;
 
 /// A piecewise-linear function `y(s)` through points with increasing `s`, constant beyond the
 /// first and last point.

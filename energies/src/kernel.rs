@@ -1,4 +1,4 @@
-//! The quadrature element kernel: the elastic energy of one tetrahedron of `n` = 4 or 10 nodes,
+//! The quadrature kernel: the elastic energy of one tetrahedron of `n` = 4 or 10 nodes,
 //! `E_e = sum_q w_q Psi(F_q)` (eq. 2 of Sheen et al. 2021 integrated by quadrature), with its
 //! gradient and Hessian by the chain rule, for any [`Hyperelastic`] density.
 //!

@@ -2,85 +2,16 @@
 //! compare their method against in Fig. 8 (sec. 8.3), applied to the state the step's Newton
 //! solve accepted (the equations: [`VolumeProjection`]).
 
+use crate::error::SolverError;
 use crate::linear::{max_abs_diagonal, CholeskySolver, Ordering};
+use crate::model::dofs::Dofs;
 use crate::model::row_volumes;
-use crate::{Dofs, SolverError};
+use crate::settings::VolumeProjection;
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_constraints::{
     exact_rule, jacobian_matrix, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
 };
 use isochor_mesh::{ElementMesh, Vec3};
-
-/// What corrects the volume after each implicit Euler step.
-///
-/// **One-ring pressure projection** (Irving, Schroeder and Fedkiw 2007, "Volume Conserving
-/// Finite Element Simulations of Deformable Models"). Each vertex `i` of a 4-node tet mesh
-/// owns the volume of its one ring, `V_i(x) = sum_{e incident to i} V_e(x)`, rest value
-/// `V0_i`. `G = dV/dx` (one row per vertex) is four times the Jacobian of the nodal (P1)
-/// volume constraints, whose row `i` is `sum_e V_e (J_e - 1) / 4` ([`NodalConstraints`]);
-/// on 10-node tets the same rows define `V_i = 4 integral L_i J dV` (`L_i` the corner's
-/// linear shape function), the one-ring volume on 4-node tets.
-/// `W` is the inverse lumped mass per DOF, zero on prescribed DOFs (they do not move). After
-/// the elastic update (here a full implicit Euler step of the base material) two pressure
-/// solves with the SPD matrix `A = dt^2 G W G^T` follow, one pressure per vertex:
-///
-/// 1. positions, with the clamped volume recovery: the linearized one-ring constraint
-///    `V_i(x + dx) ~ V_i(x) + (G dx)_i = V_i(x) + d_i` with the target change
-///    `d_i = clamp(V0_i - V_i(x), -r V0_i, r V0_i)` (`r` the recovery per step), solved by
-///    `A p = d`, `dx = dt^2 W G^T p`;
-/// 2. velocities, at the corrected positions: the incompressible motion `G v' = 0`,
-///    `v' = v + dt W G^T p'` with `A p' = -dt G v`.
-///
-/// `p` and `p'` are pressures (Pa): `G^T p` is the force of a pressure on the one rings.
-/// Positions and velocities are corrected by separate solves, so that the volume recovery
-/// does not enter the velocities (the reason Irving et al. give for splitting them), and
-/// the recovery is clamped as Sheen et al. did to keep this scene stable ("an aggressive
-/// clamping of the volume recovery"). What is ours, not taken from the paper (which we could
-/// not consult): the elastic update is our fully implicit Euler step rather than their
-/// semi-implicit one, the clamp is relative to each one ring's rest volume, both solves use
-/// one linearization each (no iteration to the exact volume), and contact is not part of the
-/// pressure solve. A one ring whose vertices are all prescribed is left as it is. On
-/// structured boxes `G` has spurious pressure modes (`G^T q = 0`, see [`NodalConstraints`]),
-/// so `A` is factored with the diagonal shift `1e-8 max A_ii`: a shifted mode moves no
-/// vertex, and the other pressures change by at most that shift over `A`'s smallest nonzero
-/// eigenvalue, relatively.
-///
-/// **Global rescaling** (the "naive global volume rescaling" of Sheen et al. 2021, sec.
-/// 8.3): the free DOFs are scaled about their centre of mass, `x' = c + s (x - c)` per axis
-/// (`c` mass-weighted over the free DOFs of that axis, so it does not move), with `s` such
-/// that the body's total volume equals its rest volume (`s = (V0 / V)^(1/3)` without
-/// prescribed DOFs; with them, `V(s)` is a cubic solved by secant iterations). Velocities
-/// are left as the step computed them: the rescaling is a correction of positions alone,
-/// like Irving et al.'s position solve, so its displacement is not turned into motion (which
-/// would add the correction's energy as kinetic energy every frame), and momentum is kept.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum VolumeProjection {
-    /// Nothing: the state is the step's.
-    #[default]
-    None,
-    /// Irving et al. 2007's one-ring pressure projection (above), recovering at most
-    /// `recovery` of each one ring's rest volume per step.
-    OneRing {
-        /// The largest volume change of a one ring per step, relative to its rest volume.
-        recovery: f64,
-    },
-    /// Rescale the body about its centre of mass to its rest volume (above).
-    GlobalRescale,
-}
-
-impl VolumeProjection {
-    /// Checks the recovery of [`VolumeProjection::OneRing`]: `0 < recovery <= 1`.
-    pub fn validate(&self) -> Result<(), SolverError> {
-        match *self {
-            VolumeProjection::OneRing { recovery } if !(recovery > 0.0 && recovery <= 1.0) => {
-                Err(SolverError::InvalidProblem(format!(
-                    "the one-ring volume recovery {recovery} must lie in (0, 1]"
-                )))
-            }
-            _ => Ok(()),
-        }
-    }
-}
 
 /// Relative diagonal shift of the pressure matrix (see [`VolumeProjection`]).
 const PRESSURE_SHIFT: f64 = 1e-8;
@@ -95,7 +26,7 @@ const RESCALE_ITERATIONS: usize = 50;
 
 /// A [`VolumeProjection`] set up on a mesh.
 #[derive(Debug)]
-pub struct Projector {
+pub struct VolumeProjector {
     kind: Kind,
     /// Inverse lumped mass of every DOF (`3 node + axis`), zero where prescribed.
     inverse_masses: Vec<f64>,
@@ -116,7 +47,7 @@ enum Kind {
     },
 }
 
-impl Projector {
+impl VolumeProjector {
     /// `projection` on `mesh` with lumped `masses` (one per node) and the DOFs `dofs`; pressure
     /// matrices are factored under `ordering`.
     ///
@@ -159,7 +90,7 @@ impl Projector {
                 rest_volume: mesh.total_volume_at(mesh.nodes()),
             },
         };
-        Ok(Projector {
+        Ok(VolumeProjector {
             kind,
             inverse_masses,
             ordering,
@@ -346,7 +277,7 @@ fn diagonal(a: &SparseColMat<usize, f64>) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Dirichlet, Motion};
+    use crate::problem::loads::{Dirichlet, Motion};
     use isochor_mesh::generate::box_grid;
     use isochor_mesh::shape_matrix;
     use nalgebra::{DMatrix, SymmetricEigen};
@@ -363,7 +294,11 @@ mod tests {
         (0..n).map(|i| 1.0 + 0.5 * (i as f64).sin()).collect()
     }
 
-    fn projector(projection: VolumeProjection, mesh: &ElementMesh, fixed: &[usize]) -> Projector {
+    fn projector(
+        projection: VolumeProjection,
+        mesh: &ElementMesh,
+        fixed: &[usize],
+    ) -> VolumeProjector {
         let conditions = [Dirichlet {
             nodes: fixed.to_vec(),
             axes: [true; 3],
@@ -371,7 +306,7 @@ mod tests {
             curve: None,
         }];
         let dofs = Dofs::new(mesh.num_nodes(), &conditions).unwrap();
-        Projector::new(
+        VolumeProjector::new(
             projection,
             mesh,
             &masses(mesh.num_nodes()),
@@ -392,7 +327,7 @@ mod tests {
     /// (2-norm): `A p = b - s p`, so the miss is `s |(A + s)^-1 b| <= s / lambda_min |b|`,
     /// `lambda_min` the smallest nonzero eigenvalue of `A` (its zero ones, the spurious
     /// modes, are orthogonal to every right-hand side of these tests).
-    fn shift_miss(p: &Projector, x: &[Vec3], b: &[f64]) -> f64 {
+    fn shift_miss(p: &VolumeProjector, x: &[Vec3], b: &[f64]) -> f64 {
         let Kind::OneRing { constraints, .. } = &p.kind else {
             unreachable!()
         };

@@ -1,4 +1,4 @@
-//! Element (P0) volume constraints: one pressure per element (sec. 4.6 of Francu et al. 2021).
+//! Per-element (P0) volume constraints: one pressure per element (sec. 4.6 of Francu et al. 2021).
 
 use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements, Shapes};
 use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
@@ -17,14 +17,14 @@ use rayon::prelude::*;
 /// With as many constraints as tets, about `5n` on a 4-node tet mesh against `3n` DOFs, this
 /// discretization violates the counting condition (eq. 1) and locks (Appendix A).
 #[derive(Debug, Clone)]
-pub struct ElementConstraints {
+pub struct PerElementConstraints {
     elements: MeasuredElements,
     /// `1 / kappa_e` per element.
     inverse_kappa: Vec<f64>,
 }
 
-impl ElementConstraints {
-    /// Element constraints on the 4-node tets of `mesh` (the one-point rule, exact) with the
+impl PerElementConstraints {
+    /// Per-element constraints on the 4-node tets of `mesh` (the one-point rule, exact) with the
     /// given measure and bulk modulus `kappa` (`f64::INFINITY` for an incompressible
     /// material: `C = 0` exactly).
     ///
@@ -34,7 +34,7 @@ impl ElementConstraints {
         Self::on_elements(&linear, TetQuadrature::Degree1, measure, kappa)
     }
 
-    /// Element constraints on the elements of `mesh`, integrated with `rule` (see
+    /// Per-element constraints on the elements of `mesh`, integrated with `rule` (see
     /// [`crate::exact_rule`]).
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] unless `kappa > 0`.
@@ -47,7 +47,7 @@ impl ElementConstraints {
         Self::on_regions(mesh, rule, measure, &vec![kappa; mesh.num_elements()])
     }
 
-    /// As [`ElementConstraints::on_elements`] with one bulk modulus per element (a body of
+    /// As [`PerElementConstraints::on_elements`] with one bulk modulus per element (a body of
     /// several materials): `C_e = V_e / kappa_e`.
     ///
     /// Errors: [`ConstraintError::InvalidParameter`] unless every `kappa > 0`;
@@ -59,7 +59,7 @@ impl ElementConstraints {
         kappa: &[f64],
     ) -> Result<Self, ConstraintError> {
         let elements = MeasuredElements::new(mesh, rule, measure)?;
-        Ok(ElementConstraints {
+        Ok(PerElementConstraints {
             inverse_kappa: inverse_bulk_moduli(kappa, &elements)?,
             elements,
         })
@@ -71,7 +71,7 @@ impl ElementConstraints {
     }
 }
 
-impl ConstraintSet for ElementConstraints {
+impl ConstraintSet for PerElementConstraints {
     fn name(&self) -> &'static str {
         match self.measure() {
             Measure::Linear => "element",
@@ -153,7 +153,7 @@ mod tests {
     #[test]
     fn values_compliance_and_pressures() {
         let mesh = two_tets();
-        let set = ElementConstraints::new(&mesh, Measure::Linear, 2.0).unwrap();
+        let set = PerElementConstraints::new(&mesh, Measure::Linear, 2.0).unwrap();
         assert_eq!(set.num_constraints(), 2);
         let x = moved(&mesh, 3, Vec3::new(0.0, 0.0, 0.5));
         let mut phi = [0.0; 2];
@@ -170,7 +170,7 @@ mod tests {
         assert_eq!(set.anchor_vertex(1), Some(4));
         assert_eq!(set.anchor_vertex(2), None);
 
-        let log = ElementConstraints::new(&mesh, Measure::Logarithmic, 2.0).unwrap();
+        let log = PerElementConstraints::new(&mesh, Measure::Logarithmic, 2.0).unwrap();
         let p = log.tet_pressures(&x, &[3.0, -1.0]);
         let j0 = mesh.volume_at(0, &x) / v[0];
         assert!((p[0] - 3.0 / j0).abs() < 1e-15);
@@ -180,15 +180,15 @@ mod tests {
     #[test]
     fn incompressible_compliance_is_exactly_zero() {
         let mesh = two_tets();
-        let set = ElementConstraints::new(&mesh, Measure::Linear, f64::INFINITY).unwrap();
+        let set = PerElementConstraints::new(&mesh, Measure::Linear, f64::INFINITY).unwrap();
         assert_eq!(set.compliance(), Compliance::Diagonal(vec![0.0, 0.0]));
-        assert!(ElementConstraints::new(&mesh, Measure::Linear, f64::NAN).is_err());
+        assert!(PerElementConstraints::new(&mesh, Measure::Linear, f64::NAN).is_err());
     }
 
     #[test]
     fn bad_inputs_are_errors() {
         let mesh = two_tets();
-        let set = ElementConstraints::new(&mesh, Measure::Logarithmic, 1.0).unwrap();
+        let set = PerElementConstraints::new(&mesh, Measure::Logarithmic, 1.0).unwrap();
         // Push apex 4 through the shared face: tet 1 inverts.
         let x = moved(&mesh, 4, Vec3::new(0.0, 0.0, 1.6));
         let mut phi = [0.0; 2];

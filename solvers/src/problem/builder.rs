@@ -1,10 +1,12 @@
 //! [`ProblemBuilder`]: a [`Problem`] stated call by call, with defaults for what most
 //! problems share, checked when built.
 
-use super::problem::{
-    Dirichlet, Load, Material, Method, Motion, Obstacle, Problem, Region, ScheduledLoad,
-};
-use crate::SolverError;
+use super::loads::{Dirichlet, Load, Motion, ScheduledLoad};
+use super::material::Material;
+use super::method::Method;
+use super::obstacle::Obstacle;
+use super::{Problem, Region};
+use crate::error::SolverError;
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 
 /// Young's modulus of the default material, in Pa.
