@@ -163,7 +163,7 @@ fn iterative_path_converges_on_the_singular_p1_p1_saddle_point() {
     assert!(d < AGREEMENT, "{d:e}");
 }
 
-/// The measurements of the README's iterative-path table: the cantilever at nu = 0.4999,
+/// The measurements of the iterative-path table of docs/performance.md: the cantilever at nu = 0.4999,
 /// one load step, each method, direct against CG / MINRES with each
 /// preconditioner. Per run: Newton iterations, Krylov iterations per Newton iteration (the
 /// saddle path may solve twice: its second-order correction), and the

@@ -291,7 +291,7 @@ fn multigrid_iterations_barely_grow_under_refinement() {
     );
 }
 
-/// The README's multigrid table: CG to a relative residual of 1e-8 on the cantilever's `K`
+/// The multigrid table of docs/performance.md: CG to a relative residual of 1e-8 on the cantilever's `K`
 /// at rest with multigrid and with IC(0) (setup and solve times, iterations) against the
 /// sparse Cholesky factorization of the same matrix, at `nu` 0.45 and 0.4999. Resolutions
 /// from `ISOCHOR_STUDY_RES` (comma-separated, default `8,12,16`).

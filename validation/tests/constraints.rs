@@ -3,7 +3,7 @@
 //! 2021 as numbers; zonal volumes; compliance limits.
 
 use isochor_constraints::{
-    Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance, NodalConstraints,
+    Compliance, ConstraintSet, PerElementConstraints, Measure, NodalCompliance, NodalConstraints,
     ZonalConstraints,
 };
 use isochor_mesh::{generate::box_grid, TetMesh, Vec3, Zones};
@@ -66,7 +66,7 @@ fn all_cases(mesh: &TetMesh) -> Vec<Case> {
     let mut cases = Vec::new();
     for measure in [Measure::Linear, Measure::Logarithmic] {
         cases.push(Case {
-            set: Box::new(ElementConstraints::new(mesh, measure, 10.0).expect("P0")),
+            set: Box::new(PerElementConstraints::new(mesh, measure, 10.0).expect("P0")),
             reference: Box::new(move |mesh, x| {
                 DVector::from_vec(element_measures(mesh, x, measure))
             }),
@@ -271,7 +271,7 @@ fn appendix_a_element_constraints_lock_nodal_ones_do_not() {
         let bending = field(&|p| Vec3::new(p.x * p.x, -2.0 * p.x * (p.y - c), 0.0) / extent.x);
         let shear = field(&|p| Vec3::new(0.0, 0.3 * p.x, -0.2 * p.x));
 
-        let p0 = ElementConstraints::new(mesh, Measure::Linear, f64::INFINITY).expect("P0");
+        let p0 = PerElementConstraints::new(mesh, Measure::Linear, f64::INFINITY).expect("P0");
         let p1 = NodalConstraints::new(
             mesh,
             Measure::Linear,
@@ -381,7 +381,7 @@ fn compliance_limits() {
     assert!(zero(nodal(f64::INFINITY, NodalCompliance::Lumped)));
     assert!(zero(nodal(f64::INFINITY, NodalCompliance::Consistent)));
     assert!(zero(
-        ElementConstraints::new(&mesh, Measure::Logarithmic, f64::INFINITY)
+        PerElementConstraints::new(&mesh, Measure::Logarithmic, f64::INFINITY)
             .expect("P0")
             .compliance()
     ));

@@ -24,10 +24,10 @@
 //!   (any rule), degree 3 on curved ones (the degree-5 rule).
 
 use isochor_constraints::{
-    exact_rule, Compliance, ConstraintSet, ElementConstraints, Measure, NodalCompliance,
+    exact_rule, Compliance, ConstraintSet, PerElementConstraints, Measure, NodalCompliance,
     NodalConstraints, ZonalConstraints,
 };
-use isochor_energies::element::{self, RestPoints};
+use isochor_energies::kernel::{self, RestPoints};
 use isochor_energies::triangle::{self, area_element, RestFacePoints};
 use isochor_energies::{
     constrained_neo_hookean, quadratic_neo_hookean, stable_neo_hookean, standard_neo_hookean, tet,
@@ -147,7 +147,7 @@ fn check_kernel(
     let (mut g, mut h) = (vec![0.0; n], vec![0.0; n * n]);
     let f_at = |x: &[Vec3], q: usize| deformation_gradient(x, nodes, geometry.gradients(0, q));
     let defined = (0..rule.num_points()).all(|q| m.is_defined_at(f_at(&x, q).determinant()));
-    let result = element::evaluate(m, &x, nodes, rest, Some(&mut g), Some(&mut h));
+    let result = kernel::evaluate(m, &x, nodes, rest, Some(&mut g), Some(&mut h));
     if !defined {
         prop_assert!(result.is_err(), "{}: no error outside the domain", m.name());
         return Ok(());
@@ -167,11 +167,11 @@ fn check_kernel(
         m.name()
     );
     let energy_of = |v: &DVector<f64>| {
-        element::evaluate(m, &unflatten(v), nodes, rest, None, None).expect("defined")
+        kernel::evaluate(m, &unflatten(v), nodes, rest, None, None).expect("defined")
     };
     let gradient_of = |v: &DVector<f64>| {
         let mut g = vec![0.0; n];
-        element::evaluate(m, &unflatten(v), nodes, rest, Some(&mut g), None).expect("defined");
+        kernel::evaluate(m, &unflatten(v), nodes, rest, Some(&mut g), None).expect("defined");
         DVector::from_vec(g)
     };
     let xv = flatten(&x);
@@ -253,7 +253,7 @@ proptest! {
 fn rest_stiffness(mesh: &ElementMesh, rule: TetQuadrature, m: &dyn Hyperelastic) -> DMatrix<f64> {
     let geometry = mesh.rest_geometry(rule).expect("rest geometry");
     let mut h = vec![0.0; 900];
-    element::evaluate(
+    kernel::evaluate(
         m,
         mesh.nodes(),
         mesh.element(0),
@@ -367,7 +367,7 @@ fn all_cases(d: &DeformedElements) -> Vec<Case> {
         let element_rows = direct_integrals(d, rule, measure, false);
         cases.push(Case {
             set: Box::new(
-                ElementConstraints::on_elements(&d.mesh, rule, measure, 10.0).expect("P0"),
+                PerElementConstraints::on_elements(&d.mesh, rule, measure, 10.0).expect("P0"),
             ),
             reference: DVector::from_iterator(
                 element_rows.len(),
@@ -632,7 +632,7 @@ fn internal_forces(
     let mut g = vec![0.0; 30];
     for e in 0..mesh.num_elements() {
         let nodes = mesh.element(e);
-        element::evaluate(m, x, nodes, rest_points(&geometry, e), Some(&mut g), None)
+        kernel::evaluate(m, x, nodes, rest_points(&geometry, e), Some(&mut g), None)
             .expect("defined");
         for (&i, ge) in nodes.iter().zip(g.chunks_exact(3)) {
             forces[i] += Vec3::from_column_slice(ge);
@@ -961,11 +961,11 @@ fn tet4_results_keep_their_pinned_values() {
     let sets: [(&str, Box<dyn ConstraintSet>); 5] = [
         (
             "P0",
-            Box::new(ElementConstraints::new(&mesh, Measure::Linear, 3.0).expect("P0")),
+            Box::new(PerElementConstraints::new(&mesh, Measure::Linear, 3.0).expect("P0")),
         ),
         (
             "P0-log",
-            Box::new(ElementConstraints::new(&mesh, Measure::Logarithmic, 3.0).expect("P0")),
+            Box::new(PerElementConstraints::new(&mesh, Measure::Logarithmic, 3.0).expect("P0")),
         ),
         (
             "P1",

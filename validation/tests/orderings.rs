@@ -1,7 +1,7 @@
 //! The fill-reducing orderings (AMD, METIS nested dissection) of the direct solvers give the
 //! same solutions: the ordering changes only the rounding of the factorization, and every run
 //! is stopped by the same Newton tolerances. Behind `#[ignore]`: the fill and factorization
-//! time of both orderings on the systems of the README's table (run in release).
+//! time of both orderings on the systems of docs/performance.md's table (run in release).
 
 use isochor_scenes::problem::build;
 use isochor_scenes::{load_scene, Override};
@@ -114,12 +114,12 @@ fn per_iteration(summary: &RunSummary) -> ([f64; 4], usize, usize) {
     )
 }
 
-/// Fill and numeric factorization time of AMD against nested dissection on the README's
-/// systems (two load steps or frames; the second is measured), and where an iteration's time
+/// Fill and numeric factorization time of AMD against nested dissection on the systems of
+/// docs/performance.md (two load steps or frames; the second is measured), and where an iteration's time
 /// goes. Run in release:
 /// `cargo test --release -p isochor-validation --test orderings -- --ignored --nocapture`.
 #[test]
-#[ignore = "a measurement (minutes in release), printed for the README"]
+#[ignore = "a measurement (minutes in release), printed for docs/performance.md"]
 fn fill_and_factorization_time_of_amd_and_nested_dissection() {
     let cases: &[(&str, &[&str])] = &[
         ("cantilever", &["res=4", "method=standard"]),
