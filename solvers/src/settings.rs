@@ -19,12 +19,12 @@ pub enum LinearSolver {
     Auto(IterativeSettings),
 }
 
-/// Systems of at most this many unknowns (free DOFs plus constraint rows) are solved
-/// directly by [`LinearSolver::Auto`]. On the cantilever at nu = 0.4999 the direct solver was
-/// faster than the iterative one at every size measured (docs/performance.md, "The
-/// iterative linear path"), so the switch sits where the direct factor's memory becomes the limit: the scenes'
-/// memory model (`410 B * n^(4/3)` of fill) reaches 4 GiB, a sixth of a 24 GiB machine, at
-/// about 180k unknowns.
+/// Systems of at most this many unknowns (free DOFs plus constraint rows) are solved directly by
+/// [`LinearSolver::Auto`]. On the cantilever at nu = 0.4999 the direct solver was faster than the
+/// iterative one at every size measured (docs/performance.md, "The iterative linear path"), so the
+/// switch sits where the direct factor's memory becomes the limit: the scenes' memory model
+/// (`410 B * n^(4/3)` of fill) reaches 4 GiB, a sixth of a 24 GiB machine, at about 180k
+/// unknowns.
 pub const AUTO_DIRECT_UNKNOWNS: usize = 180_000;
 
 impl LinearSolver {

@@ -163,11 +163,11 @@ fn iterative_path_converges_on_the_singular_p1_p1_saddle_point() {
     assert!(d < AGREEMENT, "{d:e}");
 }
 
-/// The measurements of the iterative-path table of docs/performance.md: the cantilever at nu = 0.4999,
-/// one load step, each method, direct against CG / MINRES with each
-/// preconditioner. Per run: Newton iterations, Krylov iterations per Newton iteration (the
-/// saddle path may solve twice: its second-order correction), and the
-/// linear-solve time per Newton iteration (factorization and solves). Resolutions from
+/// The measurements of the iterative-path table of docs/performance.md: the cantilever at nu =
+/// 0.4999, one load step, each method, direct against CG / MINRES with each preconditioner. Per
+/// run: Newton iterations, Krylov iterations per Newton iteration (the saddle path may solve twice:
+/// its second-order correction), and the linear-solve time per Newton iteration (factorization and
+/// solves). Resolutions from
 /// `ISOCHOR_STUDY_RES` (comma-separated, default `4,8,12`), methods from
 /// `ISOCHOR_STUDY_METHODS` (default `standard,mixed-p1,zonal`), linear solvers from
 /// `ISOCHOR_STUDY_LINEAR` (names from the table, comma-separated, default all).

@@ -291,10 +291,10 @@ fn multigrid_iterations_barely_grow_under_refinement() {
     );
 }
 
-/// The multigrid table of docs/performance.md: CG to a relative residual of 1e-8 on the cantilever's `K`
-/// at rest with multigrid and with IC(0) (setup and solve times, iterations) against the
-/// sparse Cholesky factorization of the same matrix, at `nu` 0.45 and 0.4999. Resolutions
-/// from `ISOCHOR_STUDY_RES` (comma-separated, default `8,12,16`).
+/// The multigrid table of docs/performance.md: CG to a relative residual of 1e-8 on the
+/// cantilever's `K` at rest with multigrid and with IC(0) (setup and solve times, iterations)
+/// against the sparse Cholesky factorization of the same matrix, at `nu` 0.45 and 0.4999.
+/// Resolutions from `ISOCHOR_STUDY_RES` (comma-separated, default `8,12,16`).
 #[test]
 #[ignore = "study of minutes: run with --release -- --ignored --nocapture"]
 fn multigrid_study() {

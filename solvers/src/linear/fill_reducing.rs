@@ -21,9 +21,9 @@ pub enum Ordering {
 }
 
 impl Ordering {
-    /// Graph vertices (DOFs; for the KKT, DOFs with the constraints merged into their
-    /// anchors) from which [`Ordering::Auto`] uses nested dissection. Measured on the
-    /// cantilever (docs/performance.md, "Fill-reducing orderings"): nested dissection was slower at 7,776
+    /// Graph vertices (DOFs; for the KKT, DOFs with the constraints merged into their anchors) from
+    /// which [`Ordering::Auto`] uses nested dissection. Measured on the cantilever
+    /// (docs/performance.md, "Fill-reducing orderings"): nested dissection was slower at 7,776
     /// vertices (`standard`, res 8), even for `mixed-p1` at res 8 (7,776 vertices), about 20%
     /// faster at 24,336 (res 12, both methods) and twice as fast on the fine ball (36k).
     pub const AUTO_THRESHOLD: usize = 20_000;
