@@ -13,7 +13,7 @@
 //!
 //! Run with `-- --nocapture` to see every run's numbers and wall time.
 
-mod common;
+use crate::common;
 
 use common::{assert_converged, probe, run_cached, variation};
 use isochor_scenes::RunResult;

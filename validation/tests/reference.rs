@@ -32,7 +32,7 @@
 //!
 //! Run with `-- --nocapture` to see every pinned value.
 
-mod common;
+use crate::common;
 
 use common::run;
 use isochor_scenes::problem::build;
@@ -397,7 +397,11 @@ pinned_scenes! {
 #[test]
 fn every_builtin_scene_has_pin_tests_and_every_record_a_test() {
     let names: BTreeSet<&str> = builtin::names().collect();
-    assert_eq!(names, SCENES.iter().copied().collect(), "scenes without pin tests, or pin tests without a scene");
+    assert_eq!(
+        names,
+        SCENES.iter().copied().collect(),
+        "scenes without pin tests, or pin tests without a scene"
+    );
     let pinned = pins("scenes").unwrap_or_else(|e| panic!("{e}"));
     let orphans: Vec<String> = pinned
         .keys()
@@ -407,7 +411,10 @@ fn every_builtin_scene_has_pin_tests_and_every_record_a_test() {
         })
         .map(|run| run.to_string())
         .collect();
-    assert!(orphans.is_empty(), "records no test recomputes: {orphans:#?}");
+    assert!(
+        orphans.is_empty(),
+        "records no test recomputes: {orphans:#?}"
+    );
 }
 
 /// The cantilever's refinement at nu = 0.4999 (the convergence study of Francu et al. 2021,

@@ -80,7 +80,9 @@ pub(super) fn parse(text: &str) -> Result<Group, String> {
         let mut probes = BTreeMap::new();
         for (probe, value) in record.values {
             let tolerance = match record.tolerances.get(&probe) {
-                Some(t) => t.tolerance().map_err(|e| format!("{}: {probe}: {e}", run))?,
+                Some(t) => t
+                    .tolerance()
+                    .map_err(|e| format!("{}: {probe}: {e}", run))?,
                 None => tolerance,
             };
             let provenance = record
@@ -142,7 +144,9 @@ pub(super) fn render(group: &Group) -> String {
             }
         };
         out += &exceptions("tolerances", &tolerance, &|p| self::tolerance(&p.tolerance));
-        out += &exceptions("provenances", &provenance, &|p| self::provenance(&p.provenance));
+        out += &exceptions("provenances", &provenance, &|p| {
+            self::provenance(&p.provenance)
+        });
     }
     out
 }
