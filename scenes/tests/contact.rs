@@ -49,7 +49,7 @@ fn coarse_ball_lands_and_zonal_keeps_its_volume() {
 }
 
 /// The fine ball of Fig. 10 of Sheen et al. (63,888 tets, 400 frames of 1 ms) with the zonal
-/// method: long (`cargo test --release -p isochor-scenes --test contact -- --ignored`).
+/// method: long (`cargo test --release -p isochor-scenes --test scenes -- --ignored contact::`).
 /// Prints the figures of Table 1 (time and Newton iterations per frame) and the volume
 /// extremes.
 #[test]

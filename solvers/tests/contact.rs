@@ -3,7 +3,7 @@
 //! ball bouncing off it, a block squeezed between cylinders, a cylinder squeezed by a
 //! shrinking ring.
 
-mod common;
+use crate::common;
 
 use common::plane;
 use isochor_mesh::generate::{ball, box_grid, cylinder};

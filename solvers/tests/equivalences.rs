@@ -1,7 +1,7 @@
 //! Exact equivalences between methods, to solver tolerance on the same mesh: they catch
 //! sign and scaling errors that plausible-looking results hide.
 
-mod common;
+use crate::common;
 
 use common::{cantilever, relative_difference};
 use isochor_constraints::NodalCompliance;

@@ -2,7 +2,7 @@
 //! terms) reaches the direct path's solutions, on linear and quadratic tets, and at
 //! `nu = 0.5`.
 
-mod common;
+use crate::common;
 
 use common::{cantilever, cantilever_tet10, relative_difference, study_list};
 use isochor_mesh::{generate::ball, Vec3};

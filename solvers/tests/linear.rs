@@ -1,7 +1,7 @@
 //! Tests of the linear-algebra layer against dense nalgebra references, and on a P1-P1
 //! saddle point of a structured tet box at `C = 0` (exactly singular KKT).
 
-mod common;
+use crate::common;
 
 use common::{p1_box, P1Box, Rng};
 use faer::sparse::SparseColMat;

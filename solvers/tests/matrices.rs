@@ -2,7 +2,7 @@
 //! equal to the dense system of `Linearizer::newton_system` (itself checked against finite
 //! differences of the residual in the validation crate), symmetric, of the stated shapes.
 
-mod common;
+use crate::common;
 
 use isochor_solvers::sprs::CsMat;
 use isochor_solvers::{Matrices, Method, Settings, Simulation, Stepping};

@@ -1,7 +1,7 @@
 //! Physical checks of the solvers: a nonlinear patch test, the linear (Euler-Bernoulli)
 //! limit, incompressibility at nu = 0.5, and the discrete free fall of implicit Euler.
 
-mod common;
+use crate::common;
 
 use common::{beam, cantilever, end_deflection, plane};
 use isochor_energies::Lame;

@@ -2,7 +2,7 @@
 //! Cholesky, its diagonal-shift retry, the block-diagonal saddle-point preconditioner, and
 //! smoothed-aggregation multigrid on the cantilever's elasticity stiffness.
 
-mod common;
+use crate::common;
 
 use common::Rng;
 use faer::sparse::SparseColMat;

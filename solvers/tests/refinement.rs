@@ -1,7 +1,7 @@
 //! As the mesh is refined, the methods' tip deflections on a mildly compressible
 //! cantilever (nu = 0.3) approach each other.
 
-mod common;
+use crate::common;
 
 use common::{cantilever, end_deflection};
 use isochor_energies::Lame;

@@ -40,7 +40,7 @@ use isochor_mesh::element::{
 use isochor_mesh::{generate::box_grid, ElementMesh, TetMesh, Vec3, Zones};
 use isochor_validation::constraint_checks::{self, flatten, jacobian, unflatten, values};
 use isochor_validation::fd::{self, relative_error, relative_error_vec};
-use isochor_validation::pinned::{assert_pinned, Tolerance};
+use isochor_validation::pinned::{assert_pinned, Run, Tolerance};
 use isochor_validation::strategies::{
     deform_nodes, deformed_box, material_params as params, max_edge, near_identity, quadratic,
     rest_tet10, rest_triangle, two_tets, with_determinant, DeformedElements,
@@ -858,14 +858,15 @@ proptest! {
 /// before the element layer (commit 99416f574b1f).
 const PINS: &str = "elements-tet4";
 
-/// Pins every entry of `values` under `key/i`, relative to the largest entry (a reordered sum
-/// rounds by a few ulps of its largest term, not of each entry).
+/// Pins every entry of `values` as probe `i` of the record `key`, relative to the largest
+/// entry (a reordered sum rounds by a few ulps of its largest term, not of each entry).
 fn pin_all(key: &str, values: &[f64]) {
     let floor = values.iter().fold(0.0f64, |s, v| s.max(v.abs()));
     for (i, v) in values.iter().enumerate() {
         assert_pinned(
             PINS,
-            &format!("{key}/{i}"),
+            &Run::named(key),
+            &i.to_string(),
             *v,
             Tolerance::relative(1e-12, floor),
         );

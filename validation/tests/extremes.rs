@@ -4,7 +4,7 @@
 //! and measured by the probes). Never a panic, never a NaN. The outcomes are printed
 //! (`-- --nocapture`).
 
-mod common;
+use crate::common;
 
 use common::{
     check_outcome, incompressible_volume_bound, probe, try_run, unloaded_volume_tolerance, Outcome,

@@ -7,18 +7,18 @@
 //! `one_load_step_reaches_the_same_equilibrium`) at a fraction of the cost.
 //!
 //! Every cantilever tip deflection these tests compute is pinned in
-//! `validation/reference/locking.json` at a tolerance the solver's own tolerances guarantee
+//! `validation/reference/locking.toml` at a tolerance the solver's own tolerances guarantee
 //! (`tolerance_bound`); `ISOCHOR_BLESS=1` rewrites the pins when a change moves them on
 //! purpose.
 //!
 //! Run with `-- --nocapture` to see every run's numbers and wall time.
 
-mod common;
+use crate::common;
 
 use common::{assert_converged, probe, run_cached, variation};
 use isochor_scenes::RunResult;
 use isochor_solvers::Settings;
-use isochor_validation::pinned::{assert_pinned, Tolerance};
+use isochor_validation::pinned::{assert_pinned, Run, Tolerance};
 use std::time::Instant;
 
 const NUS: [&str; 4] = ["0.49", "0.499", "0.4999", "0.49999"];
@@ -76,25 +76,27 @@ fn tolerance_bound(r: &RunResult, nu: f64, deflection: f64) -> f64 {
 
 /// The tip deflection of the converged cantilever (one load step) and the relative bound on
 /// its error that the solver's tolerances guarantee ([`tolerance_bound`]). The value is
-/// pinned in `reference/locking.json`: a later run and the pinned one may each be off by the
+/// pinned in `reference/locking.toml`: a later run and the pinned one may each be off by the
 /// bound, so they are compared at twice it.
 fn tip(method: &str, res: u32, nu: &str) -> (f64, f64) {
+    let sets = [
+        format!("method={method}"),
+        format!("nu={nu}"),
+        format!("res={res}"),
+        "steps=1".to_string(),
+    ];
     let r = run_cached(
         "cantilever",
         None,
-        &[
-            &format!("method={method}"),
-            &format!("nu={nu}"),
-            &format!("res={res}"),
-            "steps=1",
-        ],
+        &sets.iter().map(String::as_str).collect::<Vec<_>>(),
     );
     assert_converged(&r, &format!("cantilever {method} nu={nu} res={res}"));
     let value = probe(&r, "tip_deflection");
     let bound = tolerance_bound(&r, nu.parse().unwrap(), value);
     assert_pinned(
         "locking",
-        &format!("cantilever/{method}/res={res}/nu={nu}/tip_deflection"),
+        &Run::scene("cantilever", None, "tet4", &sets),
+        "tip_deflection",
         value,
         Tolerance::relative(2.0 * bound, 0.0),
     );

@@ -115,9 +115,9 @@ fn per_iteration(summary: &RunSummary) -> ([f64; 4], usize, usize) {
 }
 
 /// Fill and numeric factorization time of AMD against nested dissection on the systems of
-/// docs/performance.md (two load steps or frames; the second is measured), and where an iteration's
-/// time goes. Run in release:
-/// `cargo test --release -p isochor-validation --test orderings -- --ignored --nocapture`.
+/// docs/performance.md (two load steps or frames; the second is measured), and where an
+/// iteration's time goes. Run in release:
+/// `cargo test --release -p isochor-validation --test validation -- --ignored --nocapture orderings::`.
 #[test]
 #[ignore = "a measurement (minutes in release), printed for docs/performance.md"]
 fn fill_and_factorization_time_of_amd_and_nested_dissection() {

@@ -13,7 +13,7 @@
 //!
 //! Run with `-- --nocapture` to see the measured numbers.
 
-mod common;
+use crate::common;
 
 use isochor_constraints::{exact_rule, Measure, NodalCompliance, NodalConstraints};
 use isochor_mesh::generate::{ball, ball_surface, box_grid, cylinder, cylinder_surface};

@@ -1,6 +1,7 @@
-//! Pinned results: every built-in scene and every variant in its reduced version (group
-//! `scenes`), and the cantilever's refinement at nu = 0.4999 (group `convergence`),
-//! recomputed and compared with `validation/reference/<group>.json` (see
+//! Pinned results: every built-in scene and every variant in its reduced version, on 4-node
+//! and on 10-node tets (group `scenes`, one test per scene and element, so that the test
+//! threads share the runs), and the cantilever's refinement at nu = 0.4999 (group
+//! `convergence`), recomputed and compared with `validation/reference/<group>.toml` (see
 //! `isochor_validation::pinned`; `ISOCHOR_BLESS=1` rewrites this code's pins after a change
 //! that moves them on purpose, and the commit says why).
 //!
@@ -31,14 +32,14 @@
 //!
 //! Run with `-- --nocapture` to see every pinned value.
 
-mod common;
+use crate::common;
 
 use common::run;
 use isochor_scenes::problem::build;
 use isochor_scenes::scene::{ProbeSpec, Scene, SteppingSpec};
 use isochor_scenes::{builtin, load_scene, Override, RunResult};
-use isochor_validation::pinned::{check, Tolerance};
-use std::collections::{BTreeMap, BTreeSet};
+use isochor_validation::pinned::{check, pins, Run, Tolerance};
+use std::collections::BTreeSet;
 use std::time::Instant;
 
 /// The bound on `|K^-1 r| / |K^-1 f|` per unit of `|r| / F` (see the module docs).
@@ -136,54 +137,53 @@ impl Bounds {
     }
 }
 
-/// The mismatches of one group's values with their pins, and the keys compared.
+/// The mismatches of one group's values with their pins, and the values compared.
 #[derive(Default)]
 struct Checked {
     failures: Vec<String>,
-    keys: BTreeSet<String>,
+    compared: BTreeSet<(Run, String)>,
 }
 
 impl Checked {
-    /// Compares `value` with the pin `group`/`key`.
-    fn check(&mut self, group: &str, key: String, value: f64, tolerance: Tolerance) {
-        eprintln!("PIN {group}/{key} = {value:.15e} ({tolerance:?})");
-        if let Err(e) = check(group, &key, value, tolerance) {
+    /// Compares `value` with the pin of `probe` in `run`'s record of `group`.
+    fn check(&mut self, group: &str, run: &Run, probe: &str, value: f64, tolerance: Tolerance) {
+        eprintln!("PIN {group}: {run}: {probe} = {value:.15e} ({tolerance:?})");
+        if let Err(e) = check(group, run, probe, value, tolerance) {
             self.failures.push(e);
         }
-        self.keys.insert(key);
+        self.compared.insert((run.clone(), probe.to_string()));
     }
 
-    /// Fails on any mismatch, and on a pin of `group` that no run recomputed (a scene,
-    /// variant or value that was dropped, or a stale key after a rename: delete it).
-    fn assert_all(self, group: &str) {
-        let path = format!("{}/reference/{group}.json", env!("CARGO_MANIFEST_DIR"));
-        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-        let pins: BTreeMap<String, serde_json::Value> =
-            serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
-        let stale: Vec<&String> = pins.keys().filter(|k| !self.keys.contains(*k)).collect();
+    /// Fails on any mismatch, and on a pin of `group` in a record `mine` selects that no run
+    /// recomputed (a scene, variant or value that was dropped, or a stale record after a
+    /// rename: delete it).
+    fn assert_all(self, group: &str, mine: impl Fn(&Run) -> bool) {
+        let pinned = pins(group).unwrap_or_else(|e| panic!("{e}"));
+        let stale: Vec<String> = pinned
+            .iter()
+            .filter(|(run, _)| mine(run))
+            .flat_map(|(run, probes)| probes.keys().map(move |p| (run.clone(), p.clone())))
+            .filter(|value| !self.compared.contains(value))
+            .map(|(run, probe)| format!("{run}: {probe}"))
+            .collect();
         assert!(
             self.failures.is_empty() && stale.is_empty(),
-            "{}\npinned in {path} but not recomputed: {stale:#?}",
+            "{}\npinned in group {group} but not recomputed: {stale:#?}",
             self.failures.join("\n")
         );
     }
 }
 
-/// The overrides of a run as they appear in its keys: comma-separated, without spaces.
-fn key_sets(sets: &[String]) -> String {
-    sets.join(",").replace(' ', "")
-}
-
-/// Pins every value of one run under `group`/`prefix`/...: each probe, the volume change and
-/// the final energies (elastic; external when the scene has loads; kinetic in dynamics). A
-/// run that accepts unconverged steps on purpose (`solver.accept_unconverged`: a fixed Newton
-/// iteration count) is pinned as it ran: its values are a fixed sequence of Newton updates
-/// whose own rounding is far below the tolerances of a converged run.
-fn pin_run(checked: &mut Checked, group: &str, prefix: &str, scene: &Scene, r: &RunResult) {
+/// Pins every value of one run in `run`'s record of `group`: each probe, the volume change
+/// and the final energies (elastic; external when the scene has loads; kinetic in
+/// dynamics). A run that accepts unconverged steps on purpose (`solver.accept_unconverged`: a
+/// fixed Newton iteration count) is pinned as it ran: its values are a fixed sequence of
+/// Newton updates whose own rounding is far below the tolerances of a converged run.
+fn pin_run(checked: &mut Checked, group: &str, run: &Run, scene: &Scene, r: &RunResult) {
     let by_design = r.error.is_none() && scene.solver.accept_unconverged == Some(true);
     if !(r.converged || by_design) {
         checked.failures.push(format!(
-            "{prefix}: failed at step {:?}: {:?}",
+            "{run}: failed at step {:?}: {:?}",
             r.failed_step, r.error
         ));
         return;
@@ -222,7 +222,7 @@ fn pin_run(checked: &mut Checked, group: &str, prefix: &str, scene: &Scene, r: &
         ));
     }
     for (name, value, tolerance) in values {
-        checked.check(group, format!("{prefix}/{name}"), value, tolerance);
+        checked.check(group, run, &name, value, tolerance);
     }
 }
 
@@ -232,105 +232,189 @@ fn scene(name: &str, variant: Option<&str>, sets: &[String]) -> Scene {
     load_scene(name, variant, &overrides).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-/// Every built-in scene, every variant (the columns of its figure), reduced
-/// ([`builtin::reduced`]): every probe, the volume change and the final energies match their
-/// pins (group `scenes`, keys `scene/variant/overrides/value`).
-#[test]
-fn every_builtin_scene_matches_its_pinned_values() {
-    pin_builtin_scenes("scenes", &[], &[], &[]);
+/// How the built-in scenes are pinned on one element: the overrides that select it, the
+/// runs (`scene/variant`) that must only keep a finite last state, converged or stopped by a
+/// solver error, and the runs not run.
+struct Element {
+    name: &'static str,
+    sets: &'static [&'static str],
+    unstable: &'static [&'static str],
+    skipped: &'static [&'static str],
 }
 
-/// The same runs on 10-node tets (`element=tet10`, group `scenes-tet10`), but for the
-/// figures whose physics is unstable or singular and which the quadratic element exposes
-/// where tet4 hides it by locking; those runs are not pinned, and must keep a finite last
-/// state whether they stop with a solver error or pass the instability on some branch (which
-/// of the two happens depends on rounding at the bifurcation: `bulge-puck/zonal-epidermis`
-/// stalled until 2026-11-30 and converges since, to a bulge 3.7 times the one without skin,
-/// after refactors that changed last bits of the F-bar kernel and of the masses; which one
-/// flipped it was not isolated):
+/// Every built-in scene, every variant (the columns of its figure), reduced
+/// ([`builtin::reduced`]): every probe, the volume change and the final energies match their
+/// pins.
+const TET4: Element = Element {
+    name: "tet4",
+    sets: &[],
+    unstable: &[],
+    skipped: &[],
+};
+
+/// The same runs on 10-node tets (`element=tet10`), but for the figures whose physics is
+/// unstable or singular and which the quadratic element exposes where tet4 hides it by
+/// locking; those runs are not pinned, and must keep a finite last state whether they stop
+/// with a solver error or pass the instability on some branch (which of the two happens
+/// depends on rounding at the bifurcation: `bulge-puck/zonal-epidermis` stalled until
+/// 2026-11-30 and converges since, to a bulge 3.7 times the one without skin, after refactors
+/// that changed last bits of the F-bar kernel and of the masses; which one flipped it was not
+/// isolated):
 /// - the two tets of Sheen et al.'s Fig. 2 under a global volume constraint: one free
 ///   quadratic tet inflated towards twice its volume, whose constrained Hessian turns
 ///   indefinite at a volume ratio of about 1.5 (the shifted Newton iteration stalls);
 /// - the punches with the epidermis: the stiff area-preserving skin wrinkles under the
 ///   indenter, which tet4's flat faces cannot do; the shifted Newton iteration stalls at the
 ///   bifurcation.
-#[test]
-fn every_builtin_scene_on_quadratic_tets_matches_its_pinned_values() {
-    pin_builtin_scenes(
-        "scenes-tet10",
-        &["element=tet10"],
-        &[
-            "two-tets/constrained",
-            "bulge-puck/zonal-epidermis",
-            "epidermis-puck/cnh-epidermis",
-        ],
-        // Fig. 12(d)'s 50 kPa on the reduced quadratic block (384 tets) passes a critical
-        // point of the discrete problem near 62% of the load (31 kPa), which load stepping
-        // cannot cross: in 10 or 20 fixed steps every step up to 60% converges
-        // quadratically with an unshifted KKT matrix, the next (65% or 70%) fails, and
-        // adaptive increments stall at 63% with 1e-3 of the load. No tet inverts; past 60%
-        // the KKT matrix has the wrong inertia at every iterate (a diagonal shift is needed)
-        // and the line search takes ever shorter steps. At 60% the patch sinks in a dimple at
-        // one edge (the 6-node faces carry a uniform traction on their mid-edge nodes only).
-        // Whether the point is physical or the coarse mesh's was not decided (res 8 did not
-        // finish in 400 s); passing it needs path following, not a tolerance. Measured
-        // 2026-11-30, release. `standard` on the same mesh reaches 50 kPa.
-        // The band's constrained run on the 10-node torso takes 88 s in the dev profile (its
-        // neo-Hookean variants 9-11 s, and ours 3 s on tet4): it is pinned on tet4 only, to
-        // keep the suite's time.
-        &["compressed-block/fig-12d-mixed-p1", "band/ours"],
-    );
-}
+const TET10: Element = Element {
+    name: "tet10",
+    sets: &["element=tet10"],
+    unstable: &[
+        "two-tets/constrained",
+        "bulge-puck/zonal-epidermis",
+        "epidermis-puck/cnh-epidermis",
+    ],
+    // Fig. 12(d)'s 50 kPa on the reduced quadratic block (384 tets) passes a critical
+    // point of the discrete problem near 62% of the load (31 kPa), which load stepping
+    // cannot cross: in 10 or 20 fixed steps every step up to 60% converges
+    // quadratically with an unshifted KKT matrix, the next (65% or 70%) fails, and
+    // adaptive increments stall at 63% with 1e-3 of the load. No tet inverts; past 60%
+    // the KKT matrix has the wrong inertia at every iterate (a diagonal shift is needed)
+    // and the line search takes ever shorter steps. At 60% the patch sinks in a dimple at
+    // one edge (the 6-node faces carry a uniform traction on their mid-edge nodes only).
+    // Whether the point is physical or the coarse mesh's was not decided (res 8 did not
+    // finish in 400 s); passing it needs path following, not a tolerance. Measured
+    // 2026-11-30, release. `standard` on the same mesh reaches 50 kPa.
+    // The band's constrained run on the 10-node torso takes 88 s in the dev profile (its
+    // neo-Hookean variants 9-11 s, and ours 3 s on tet4): it is pinned on tet4 only, to
+    // keep the suite's time.
+    skipped: &["compressed-block/fig-12d-mixed-p1", "band/ours"],
+};
 
-/// Runs every built-in scene and variant, reduced, with the overrides `extra`, and checks
-/// its values against the pins of `group`; the runs named `scene/variant` in `unstable` must
-/// instead keep a finite last state, converged or stopped by a solver error; those in
-/// `skipped` are not run.
-fn pin_builtin_scenes(group: &str, extra: &[&str], unstable: &[&str], skipped: &[&str]) {
+/// Runs every variant of the built-in scene `name`, reduced, on `element`, and checks its
+/// values against the records of group `scenes` (a record states the element, and the
+/// overrides but the element's own, without spaces).
+fn pin_scene(name: &str, element: &Element) {
     let start = Instant::now();
     let mut checked = Checked::default();
-    let mut runs = 0;
-    for name in builtin::names() {
-        let mut sets: Vec<String> = builtin::reduced(name)
-            .unwrap_or_else(|| panic!("no reduced version of {name}"))
-            .iter()
-            .map(|s| s.to_string())
-            .chain(extra.iter().map(|s| s.to_string()))
-            .collect();
-        let base = scene(name, None, &sets);
-        if !base.obstacles.is_empty() {
-            sets.push(format!("solver.contact_tolerance={CONTACT_TOLERANCE:e}"));
+    let mut sets: Vec<String> = builtin::reduced(name)
+        .unwrap_or_else(|| panic!("no reduced version of {name}"))
+        .iter()
+        .chain(element.sets)
+        .map(|s| s.to_string())
+        .collect();
+    let base = scene(name, None, &sets);
+    if !base.obstacles.is_empty() {
+        sets.push(format!("solver.contact_tolerance={CONTACT_TOLERANCE:e}"));
+    }
+    let set_refs: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let record_sets: Vec<String> = sets
+        .iter()
+        .filter(|s| !element.sets.contains(&s.as_str()))
+        .map(|s| s.replace(' ', ""))
+        .collect();
+    for variant in base.variants.keys() {
+        let id = format!("{name}/{variant}");
+        if element.skipped.contains(&id.as_str()) {
+            continue;
         }
-        let set_refs: Vec<&str> = sets.iter().map(String::as_str).collect();
-        for variant in base.variants.keys() {
-            let id = format!("{name}/{variant}");
-            if skipped.contains(&id.as_str()) {
-                continue;
+        let start = Instant::now();
+        let r = run(name, Some(variant), &set_refs);
+        eprintln!("RUN {id}: {:.1} s", start.elapsed().as_secs_f64());
+        if element.unstable.contains(&id.as_str()) {
+            let explained = r.converged || r.error.is_some();
+            if !explained || !r.volume_change.is_finite() {
+                checked.failures.push(format!(
+                    "{id}: expected a finite state, converged or stopped by a solver error; got converged = {}, error {:?}, volume change {}",
+                    r.converged, r.error, r.volume_change
+                ));
             }
-            let start = Instant::now();
-            let r = run(name, Some(variant), &set_refs);
-            eprintln!("RUN {id}: {:.1} s", start.elapsed().as_secs_f64());
-            runs += 1;
-            if unstable.contains(&id.as_str()) {
-                let explained = r.converged || r.error.is_some();
-                if !explained || !r.volume_change.is_finite() {
-                    checked.failures.push(format!(
-                        "{id}: expected a finite state, converged or stopped by a solver error; got converged = {}, error {:?}, volume change {}",
-                        r.converged, r.error, r.volume_change
-                    ));
-                }
-                continue;
-            }
-            let prefix = format!("{id}/{}", key_sets(&sets));
-            let loaded = scene(name, Some(variant), &sets);
-            pin_run(&mut checked, group, &prefix, &loaded, &r);
+            continue;
         }
+        let record = Run::scene(name, Some(variant), element.name, &record_sets);
+        let loaded = scene(name, Some(variant), &sets);
+        pin_run(&mut checked, "scenes", &record, &loaded, &r);
     }
     eprintln!(
-        "{runs} runs of group {group} in {:.1} s",
+        "{name} on {} in {:.1} s",
+        element.name,
         start.elapsed().as_secs_f64()
     );
-    checked.assert_all(group);
+    checked.assert_all("scenes", |run| {
+        run.name == name && run.element.as_deref() == Some(element.name)
+    });
+}
+
+/// One test per built-in scene and element (`<scene>::tet4`, `<scene>::tet10`), and the list
+/// of scenes they cover.
+macro_rules! pinned_scenes {
+    ($($test:ident => $name:literal,)*) => {
+        /// The scenes with pin tests.
+        const SCENES: &[&str] = &[$($name),*];
+        $(
+            mod $test {
+                #[test]
+                fn tet4() {
+                    super::pin_scene($name, &super::TET4);
+                }
+                #[test]
+                fn tet10() {
+                    super::pin_scene($name, &super::TET10);
+                }
+            }
+        )*
+    };
+}
+
+pinned_scenes! {
+    cantilever => "cantilever",
+    spine_arm => "spine-arm",
+    cushion => "cushion",
+    bubble => "bubble",
+    finger => "finger",
+    spine_arm_dynamics => "spine-arm-dynamics",
+    compressed_block => "compressed-block",
+    inflated_tube => "inflated-tube",
+    stretched_cylinder => "stretched-cylinder",
+    twisted_box => "twisted-box",
+    two_tets => "two-tets",
+    pressure_cube => "pressure-cube",
+    dynamic_cube => "dynamic-cube",
+    bulge_puck => "bulge-puck",
+    epidermis_puck => "epidermis-puck",
+    zoning_beam => "zoning-beam",
+    ball_drop => "ball-drop",
+    ball_drop_coarse => "ball-drop-coarse",
+    resting_block => "resting-block",
+    stretch_cube => "stretch-cube",
+    twist_cube => "twist-cube",
+    band => "band",
+    squeezed_creature => "squeezed-creature",
+}
+
+/// Every built-in scene has its pin tests, and every record of group `scenes` names one of
+/// them and an element they run (the tests check the records of their own scene).
+#[test]
+fn every_builtin_scene_has_pin_tests_and_every_record_a_test() {
+    let names: BTreeSet<&str> = builtin::names().collect();
+    assert_eq!(
+        names,
+        SCENES.iter().copied().collect(),
+        "scenes without pin tests, or pin tests without a scene"
+    );
+    let pinned = pins("scenes").unwrap_or_else(|e| panic!("{e}"));
+    let orphans: Vec<String> = pinned
+        .keys()
+        .filter(|run| {
+            !SCENES.contains(&run.name.as_str())
+                || ![TET4.name, TET10.name].contains(&run.element.as_deref().unwrap_or(""))
+        })
+        .map(|run| run.to_string())
+        .collect();
+    assert!(
+        orphans.is_empty(),
+        "records no test recomputes: {orphans:#?}"
+    );
 }
 
 /// The cantilever's refinement at nu = 0.4999 (the convergence study of Francu et al. 2021,
@@ -351,20 +435,15 @@ fn cantilever_refinement_matches_its_pinned_values() {
             let set_refs: Vec<&str> = sets.iter().map(String::as_str).collect();
             let r = run("cantilever", Some(method), &set_refs);
             let scene = scene("cantilever", Some(method), &sets);
-            let prefix = format!("cantilever/{method}/{}", key_sets(&sets));
+            let record = Run::scene("cantilever", Some(method), TET4.name, &sets);
             let bounds = Bounds::of(&scene);
             if !r.converged {
-                checked.failures.push(format!("{prefix}: {:?}", r.error));
+                checked.failures.push(format!("{record}: {:?}", r.error));
                 continue;
             }
             for name in ["tip_deflection", "end_deflection"] {
                 let tolerance = bounds.probe(&scene.probes[name]);
-                checked.check(
-                    "convergence",
-                    format!("{prefix}/{name}"),
-                    r.probes[name],
-                    tolerance,
-                );
+                checked.check("convergence", &record, name, r.probes[name], tolerance);
             }
         }
     }
@@ -372,5 +451,5 @@ fn cantilever_refinement_matches_its_pinned_values() {
         "cantilever refinement pinned in {:.1} s",
         start.elapsed().as_secs_f64()
     );
-    checked.assert_all("convergence");
+    checked.assert_all("convergence", |_| true);
 }

@@ -2,7 +2,7 @@
 //! steps retried in substeps, load curves, and checkpoints that resume a run bit for bit.
 //! Iteration counts are printed (`-- --nocapture`).
 
-mod common;
+use crate::common;
 
 use common::{assert_converged, probe, run};
 use isochor_scenes::{load_scene, problem, Override};

@@ -4,7 +4,7 @@
 //!
 //! Run with `-- --nocapture` to see every run's numbers and wall time.
 
-mod common;
+use crate::common;
 
 use common::{
     assert_converged, incompressible_volume_bound, probe, run, unloaded_volume_tolerance,

@@ -1,0 +1,16 @@
+//! The integration tests of isochor-scenes as one test binary (`autotests = false` in its
+//! `Cargo.toml`): one link and one copy of the dependencies' generic code instead of one per
+//! file. Each module is one file of this folder; `.ci/run` checks that every file is listed.
+
+mod actuators;
+mod bounds;
+mod builtin;
+mod cli;
+mod compare;
+mod contact;
+mod overrides;
+mod physical;
+mod pneunet;
+mod preview;
+mod regions;
+mod study;

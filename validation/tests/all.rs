@@ -1,0 +1,21 @@
+//! The integration tests of isochor-validation as one test binary (`autotests = false` in its
+//! `Cargo.toml`): one link and one copy of the dependencies' generic code instead of one per
+//! file. Each module is one file of this folder; `.ci/run` checks that every file is listed.
+
+mod assembled;
+mod common;
+mod constraints;
+mod contact_term;
+mod dynamics;
+mod elements;
+mod energies;
+mod extremes;
+mod locking;
+mod newton;
+mod orderings;
+mod quadratic;
+mod reference;
+mod stepping;
+mod stresses;
+mod terms;
+mod volume;
