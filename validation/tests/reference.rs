@@ -34,8 +34,8 @@
 mod common;
 
 use common::run;
-use isochor_scenes::problem::build;
-use isochor_scenes::scene::{ProbeSpec, Scene, SteppingSpec};
+use isochor_scenes::format::{ProbeSpec, Scene, SteppingSpec};
+use isochor_scenes::resolve::build;
 use isochor_scenes::{builtin, load_scene, Override, RunResult};
 use isochor_validation::pinned::{check, Tolerance};
 use std::collections::{BTreeMap, BTreeSet};

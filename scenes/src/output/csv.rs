@@ -1,7 +1,7 @@
 //! CSV logs: every Newton iteration, and every step.
 
-use crate::result::StepRecord;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::record::StepRecord;
 use std::fmt::Write;
 use std::path::Path;
 

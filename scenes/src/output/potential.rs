@@ -4,8 +4,8 @@
 
 use super::plots::{finish_plot, plot_error, range, register_font};
 use super::write_file;
-use crate::result::StepRecord;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::record::StepRecord;
 use plotters::prelude::*;
 use std::fmt::Write;
 use std::path::Path;

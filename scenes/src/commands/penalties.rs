@@ -8,8 +8,8 @@
 //! does not write, our reading: the Saint Venant-Kirchhoff volumetric term under pure dilation
 //! ([`StvkPenalty`]).
 
+use crate::error::SceneError;
 use crate::output::{finish_plot, plot_error, register_font, OutputDir};
-use crate::SceneError;
 use isochor_energies::{
     LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty, VolumetricPenalty,
 };

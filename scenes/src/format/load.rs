@@ -1,9 +1,12 @@
 //! Finding a scene (a built-in name or a TOML file) and applying a variant and `--set`
 //! overrides to it.
 
-use crate::overrides::{apply_all, Override};
-use crate::scene::{MeshSpec, Scene};
-use crate::{builtin, SceneError};
+use super::builtin;
+use super::limits;
+use super::mesh::MeshSpec;
+use super::overrides::{apply_all, Override};
+use super::scene::Scene;
+use crate::error::SceneError;
 use isochor_mesh::io::excerpt as shown;
 use std::path::{Path, PathBuf};
 
@@ -79,7 +82,7 @@ impl SceneSource {
     }
 
     /// Parses the scene, applies the named variant (if any) and then the overrides, and checks
-    /// that the result fits in memory ([`crate::limits`]).
+    /// that the result fits in memory ([`super::limits`]).
     pub fn load(&self, variant: Option<&str>, overrides: &[Override]) -> Result<Scene, SceneError> {
         let tree: toml::Value = toml::from_str(&self.text).map_err(|e| SceneError::Toml {
             origin: self.origin.clone(),
@@ -105,14 +108,14 @@ impl SceneSource {
         all.extend_from_slice(overrides);
         if all.is_empty() {
             let scene = self.resolve_paths(base);
-            crate::limits::check_memory(&scene, &self.origin)?;
+            limits::check_memory(&scene, &self.origin)?;
             return Ok(scene);
         }
         let mut tree = tree;
         apply_all(&mut tree, &all)?;
         let origin = format!("{} (with --set overrides)", self.origin);
         let scene = self.resolve_paths(Scene::from_value(tree, &origin)?);
-        crate::limits::check_memory(&scene, &origin)?;
+        limits::check_memory(&scene, &origin)?;
         Ok(scene)
     }
 

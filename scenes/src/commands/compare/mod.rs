@@ -6,13 +6,14 @@
 pub mod plots;
 mod table;
 
+use crate::commands::run::{run_scene, RunOptions};
+use crate::error::SceneError;
+use crate::format::overrides::{dotted, parse_sweep, Override};
+use crate::format::LengthUnit;
+use crate::format::PaperSpec;
+use crate::format::SceneSource;
 use crate::output::{write_file, OutputDir};
-use crate::overrides::{dotted, parse_sweep, Override};
-use crate::paper::PaperSpec;
-use crate::result::RunResult;
-use crate::run::{run_scene, RunOptions};
-use crate::scene::LengthUnit;
-use crate::{SceneError, SceneSource};
+use crate::record::RunResult;
 use isochor_solvers::Method;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

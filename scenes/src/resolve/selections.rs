@@ -1,33 +1,48 @@
-//! Scene selections resolved on a mesh: a [`SelectionSpec`] becomes an
+//! Scene selections resolved on a mesh, once: a [`SelectionSpec`] becomes an
 //! [`isochor_mesh::Region`] (the intersection of its primitives, padded by a tolerance), which
 //! then selects nodes (vertices, and on a 10-node mesh the mid-edge nodes inside), boundary
-//! faces (all three corners inside) or elements (corner centroid inside). A geometric
+//! faces (all three corners inside) and elements (corner centroid inside). A geometric
 //! selection applies to any mesh of the same shape and element; a `physical` one takes a
 //! named group of the mesh: a Gmsh physical group or TetGen region of the mesh file, or a
-//! group its generator names (then cut by the region, if one is given).
+//! group its generator names (then cut by the region, if one is given). Every kind is
+//! resolved for every selection; a kind a selection cannot give (a plane holds no tet's
+//! centroid) is kept as the error its user meets.
 
-use crate::scene::{MeshSpec, SelectionSpec};
-use crate::SceneError;
-use isochor_mesh::generate;
-use isochor_mesh::io::{
-    read_gmsh_with_groups, read_tetgen_with_regions, PhysicalGroup, PhysicalGroups,
-};
+use super::mesh::SceneMesh;
+use crate::error::SceneError;
+use crate::format::SelectionSpec;
+use isochor_mesh::io::{PhysicalGroup, PhysicalGroups};
 use isochor_mesh::{
     BoundarySurface, ElementMesh, FaceSelection, Region, TetMesh, Vec3, VertexSelection,
 };
 use std::collections::{BTreeMap, HashMap};
 
-/// The selections of a scene on one mesh, with the boundary surface they share.
-pub struct Selections<'a> {
-    elements: &'a ElementMesh,
-    mesh: &'a TetMesh,
-    specs: &'a BTreeMap<String, SelectionSpec>,
-    surface: BoundarySurface,
-    default_tolerance: f64,
-    /// The physical groups of a Gmsh mesh file, read if a selection names one.
-    groups: Option<PhysicalGroups>,
-    /// What the mesh is, for errors about physical groups.
-    source: String,
+/// Every named selection of a scene as node, vertex, boundary-face and tet sets.
+#[derive(Debug, Clone)]
+pub struct Selections {
+    sets: BTreeMap<String, Selected>,
+}
+
+/// What one selection selects of each kind (sorted, never empty), or why it selects nothing
+/// of that kind.
+#[derive(Debug, Clone)]
+struct Selected {
+    nodes: Result<Vec<usize>, String>,
+    vertices: Result<Vec<usize>, String>,
+    faces: Result<Vec<[usize; 3]>, String>,
+    tets: Result<Vec<usize>, String>,
+}
+
+impl Selected {
+    /// A selection that selects nothing of any kind, for `message`.
+    fn failed(message: String) -> Self {
+        Selected {
+            nodes: Err(message.clone()),
+            vertices: Err(message.clone()),
+            faces: Err(message.clone()),
+            tets: Err(message),
+        }
+    }
 }
 
 /// What a physical group selects on the mesh: vertices (sorted), outward boundary faces,
@@ -41,97 +56,140 @@ struct Physical {
     off_boundary: usize,
 }
 
-impl<'a> Selections<'a> {
-    /// Prepares the selections of `specs` on `elements`, built from `source` (whose named
-    /// groups are read from its file, or generated, if a selection names one).
+/// The mesh and what every selection shares while being resolved.
+struct Resolver<'a> {
+    elements: &'a ElementMesh,
+    mesh: &'a TetMesh,
+    surface: BoundarySurface,
+    /// The boundary nodes of a 10-node mesh (sorted), if a surface selection needs them.
+    surface_nodes: Option<Vec<usize>>,
+    default_tolerance: f64,
+    groups: Option<&'a PhysicalGroups>,
+    source: &'a str,
+}
+
+impl Selections {
+    /// Resolves every selection of `specs` on the scene's mesh and groups.
     pub fn new(
-        elements: &'a ElementMesh,
-        source: &MeshSpec,
-        specs: &'a BTreeMap<String, SelectionSpec>,
+        mesh: &SceneMesh,
+        specs: &BTreeMap<String, SelectionSpec>,
     ) -> Result<Self, SceneError> {
-        let mesh = elements.corners();
-        let (lo, hi) = mesh.bounding_box();
-        let wanted = specs.values().any(|s| s.physical.is_some());
-        let (groups, source) = match source {
-            MeshSpec::File { path } => {
-                let extension = path
-                    .extension()
-                    .map(|e| e.to_string_lossy().to_ascii_lowercase());
-                let groups = match extension.as_deref() {
-                    _ if !wanted => None,
-                    Some("msh") => Some(read_gmsh_with_groups(path)?.1),
-                    Some("node" | "ele") => Some(read_tetgen_with_regions(path)?.1),
-                    _ => None,
-                };
-                (groups, format!("the mesh file {}", path.display()))
-            }
-            MeshSpec::Spine { .. }
-            | MeshSpec::Cushion { .. }
-            | MeshSpec::Bubble { .. }
-            | MeshSpec::Finger { .. }
-            | MeshSpec::Torso { .. }
-            | MeshSpec::Creature { .. } => {
-                let groups = if wanted {
-                    generated_groups(source)?
-                } else {
-                    None
-                };
-                (groups, "a generated mesh with groups".to_string())
-            }
-            _ => (None, "a generated mesh".to_string()),
-        };
-        Ok(Selections {
+        let elements = &mesh.mesh;
+        let corners = elements.corners();
+        let (lo, hi) = corners.bounding_box();
+        let surface_like = specs.values().any(|s| s.surface || s.physical.is_some());
+        let resolver = Resolver {
             elements,
-            mesh,
-            specs,
-            surface: mesh.boundary()?,
+            mesh: corners,
+            surface: corners.boundary()?,
+            surface_nodes: if surface_like && !elements.mid_edges().is_empty() {
+                Some(elements.boundary()?.nodes())
+            } else {
+                None
+            },
             default_tolerance: 1e-6 * (hi - lo).norm(),
-            groups,
-            source,
-        })
+            groups: mesh.groups.as_ref(),
+            source: &mesh.source,
+        };
+        let sets = specs
+            .iter()
+            .map(|(name, spec)| (name.clone(), resolver.resolve(spec)))
+            .collect();
+        Ok(Selections { sets })
     }
 
-    /// The boundary surface of the mesh.
-    pub fn surface(&self) -> &BoundarySurface {
-        &self.surface
-    }
-
-    fn spec(&self, name: &str) -> Result<&'a SelectionSpec, SceneError> {
-        self.specs.get(name).ok_or_else(|| SceneError::Selection {
+    fn get(&self, name: &str) -> Result<&Selected, SceneError> {
+        self.sets.get(name).ok_or_else(|| SceneError::Selection {
             name: name.to_string(),
             message: format!(
                 "not defined (defined: {})",
-                self.specs.keys().cloned().collect::<Vec<_>>().join(", ")
+                self.sets.keys().cloned().collect::<Vec<_>>().join(", ")
             ),
         })
     }
 
-    fn region(&self, name: &str) -> Result<Region, SceneError> {
-        region(self.spec(name)?, self.default_tolerance).map_err(|message| SceneError::Selection {
-            name: name.to_string(),
-            message,
-        })
+    /// The selected nodes (sorted, never empty): the selected vertices, then on a 10-node
+    /// mesh the mid-edge nodes inside the region (on the boundary, for a surface selection)
+    /// whose edge joins two selected vertices, so that a held face holds its whole quadratic
+    /// faces.
+    pub fn nodes(&self, name: &str) -> Result<&[usize], SceneError> {
+        let set = &self.get(name)?.nodes;
+        set.as_deref().map_err(|m| error(name, m))
+    }
+
+    /// The selected vertices (sorted, never empty).
+    pub fn vertices(&self, name: &str) -> Result<&[usize], SceneError> {
+        let set = &self.get(name)?.vertices;
+        set.as_deref().map_err(|m| error(name, m))
+    }
+
+    /// The selected boundary faces, outward oriented (never empty).
+    pub fn faces(&self, name: &str) -> Result<&[[usize; 3]], SceneError> {
+        let set = &self.get(name)?.faces;
+        set.as_deref().map_err(|m| error(name, m))
+    }
+
+    /// The tets whose rest centroid lies in the selection (never empty); of a physical
+    /// selection, those of its volume group.
+    pub fn tets(&self, name: &str) -> Result<&[usize], SceneError> {
+        let set = &self.get(name)?.tets;
+        set.as_deref().map_err(|m| error(name, m))
+    }
+}
+
+/// The error of selection `name`.
+fn error(name: &str, message: &str) -> SceneError {
+    SceneError::Selection {
+        name: name.to_string(),
+        message: message.to_string(),
+    }
+}
+
+/// The message of a selection that selects nothing of `what`.
+fn empty(what: &str) -> String {
+    format!(
+        "selects no {what} of this mesh (check its coordinates against the mesh's bounding box)"
+    )
+}
+
+impl Resolver<'_> {
+    /// Every kind one selection selects.
+    fn resolve(&self, spec: &SelectionSpec) -> Selected {
+        let region = match region(spec, self.default_tolerance) {
+            Ok(r) => r,
+            Err(message) => return Selected::failed(message),
+        };
+        let physical = match self.physical(spec) {
+            Ok(p) => p,
+            Err(message) => return Selected::failed(message),
+        };
+        let vertices = self.vertices(spec, &region, physical.as_ref());
+        let surface = spec.surface || physical.as_ref().is_some_and(|p| p.surface);
+        Selected {
+            nodes: vertices
+                .as_ref()
+                .map(|v| self.nodes(v, &region, surface))
+                .map_err(Clone::clone),
+            faces: self.faces(spec, &region, physical.as_ref()),
+            tets: self.tets(&region, physical.as_ref()),
+            vertices,
+        }
     }
 
     /// What the selection's physical group selects, if it names one.
-    fn physical(&self, name: &str) -> Result<Option<Physical>, SceneError> {
-        let spec = self.spec(name)?;
+    fn physical(&self, spec: &SelectionSpec) -> Result<Option<Physical>, String> {
         let Some(key) = &spec.physical else {
             return Ok(None);
         };
-        let error = |message: String| SceneError::Selection {
-            name: name.to_string(),
-            message,
-        };
-        let Some(groups) = &self.groups else {
-            return Err(error(format!(
+        let Some(groups) = self.groups else {
+            return Err(format!(
                 "physical = \"{key}\" needs a mesh with named groups (a Gmsh .msh or TetGen .node/.ele file, or the generators spine, cushion, bubble, finger, torso and creature), but the scene's mesh is {}",
                 self.source
-            )));
+            ));
         };
         let Some(group) = groups.get(key) else {
             let keys: Vec<&str> = groups.keys().collect();
-            return Err(error(if keys.is_empty() {
+            return Err(if keys.is_empty() {
                 format!(
                     "no physical group \"{key}\": {} has no physical surface or volume groups",
                     self.source
@@ -142,15 +200,15 @@ impl<'a> Selections<'a> {
                     self.source,
                     keys.join(", ")
                 )
-            }));
+            });
         };
-        self.resolve(group, spec.surface)
+        self.group(group, spec.surface)
             .map(Some)
-            .map_err(|m| error(format!("physical group \"{key}\" {m}")))
+            .map_err(|m| format!("physical group \"{key}\" {m}"))
     }
 
     /// The vertices, boundary faces and tets of a physical group on this mesh.
-    fn resolve(&self, group: &PhysicalGroup, surface: bool) -> Result<Physical, String> {
+    fn group(&self, group: &PhysicalGroup, surface: bool) -> Result<Physical, String> {
         let (nv, ne) = (self.mesh.num_vertices(), self.mesh.num_tets());
         if group.faces.iter().flatten().any(|&v| v >= nv) || group.tets.iter().any(|&e| e >= ne) {
             return Err("does not match the mesh (read the same file)".into());
@@ -207,29 +265,12 @@ impl<'a> Selections<'a> {
         })
     }
 
-    fn empty(name: &str, what: &str) -> SceneError {
-        SceneError::Selection {
-            name: name.to_string(),
-            message: format!("selects no {what} of this mesh (check its coordinates against the mesh's bounding box)"),
-        }
-    }
-
-    /// The selected nodes (sorted, never empty): the selected vertices, then on a 10-node
-    /// mesh the mid-edge nodes inside the region (on the boundary, for a surface selection)
-    /// whose edge joins two selected vertices, so that a held face holds its whole quadratic
-    /// faces.
-    pub fn nodes(&self, name: &str) -> Result<Vec<usize>, SceneError> {
-        let vertices = self.vertices(name)?;
-        let region = self.region(name)?;
+    /// The selected nodes of the selected `vertices` (see [`Selections::nodes`]).
+    fn nodes(&self, vertices: &[usize], region: &Region, surface: bool) -> Vec<usize> {
         let nv = self.mesh.num_vertices();
         let mut selected = vec![false; nv];
         vertices.iter().for_each(|&v| selected[v] = true);
-        let surface = self.spec(name)?.surface || self.physical(name)?.is_some_and(|p| p.surface);
-        let on_surface = if surface && !self.elements.mid_edges().is_empty() {
-            Some(self.elements.boundary()?.nodes())
-        } else {
-            None
-        };
+        let on_surface = self.surface_nodes.as_ref().filter(|_| surface);
         let x = self.elements.nodes();
         let mid = self
             .elements
@@ -241,86 +282,82 @@ impl<'a> Selections<'a> {
                 selected[a]
                     && selected[b]
                     && region.contains(&x[node])
-                    && on_surface
-                        .as_ref()
-                        .is_none_or(|s| s.binary_search(&node).is_ok())
+                    && on_surface.is_none_or(|s| s.binary_search(&node).is_ok())
             })
             .map(|(node, _)| node);
-        Ok(vertices.iter().copied().chain(mid).collect())
+        vertices.iter().copied().chain(mid).collect()
     }
 
-    /// The selected vertices (sorted, never empty).
-    pub fn vertices(&self, name: &str) -> Result<Vec<usize>, SceneError> {
-        let spec = self.spec(name)?;
-        let region = self.region(name)?;
-        let mut vertices = if let Some(physical) = self.physical(name)? {
+    /// The selected vertices (see [`Selections::vertices`]).
+    fn vertices(
+        &self,
+        spec: &SelectionSpec,
+        region: &Region,
+        physical: Option<&Physical>,
+    ) -> Result<Vec<usize>, String> {
+        let mut vertices = if let Some(physical) = physical {
             let x = self.mesh.positions();
-            let mut v = physical.vertices;
+            let mut v = physical.vertices.clone();
             v.retain(|&v| region.contains(&x[v]));
             v
         } else if spec.surface {
-            VertexSelection::surface_from_region(name, self.mesh, &self.surface, &region).vertices
+            VertexSelection::surface_from_region("", self.mesh, &self.surface, region).vertices
         } else {
-            VertexSelection::from_region(name, self.mesh, &region).vertices
+            VertexSelection::from_region("", self.mesh, region).vertices
         };
         if let Some(explicit) = &spec.vertices {
             let n = self.mesh.num_vertices();
             if let Some(&bad) = explicit.iter().find(|&&v| v >= n) {
-                return Err(SceneError::Selection {
-                    name: name.to_string(),
-                    message: format!("vertex {bad} is out of range (the mesh has {n} vertices)"),
-                });
+                return Err(format!(
+                    "vertex {bad} is out of range (the mesh has {n} vertices)"
+                ));
             }
             vertices.retain(|v| explicit.contains(v));
         }
         if vertices.is_empty() {
-            return Err(Self::empty(name, "vertex"));
+            return Err(empty("vertex"));
         }
         Ok(vertices)
     }
 
-    /// The selected boundary faces, outward oriented (never empty).
-    pub fn faces(&self, name: &str) -> Result<Vec<[usize; 3]>, SceneError> {
-        let spec = self.spec(name)?;
-        let region = self.region(name)?;
-        let mut faces = if let Some(physical) = self.physical(name)? {
+    /// The selected boundary faces (see [`Selections::faces`]).
+    fn faces(
+        &self,
+        spec: &SelectionSpec,
+        region: &Region,
+        physical: Option<&Physical>,
+    ) -> Result<Vec<[usize; 3]>, String> {
+        let mut faces = if let Some(physical) = physical {
             if physical.off_boundary > 0 {
-                return Err(SceneError::Selection {
-                    name: name.to_string(),
-                    message: format!(
-                        "{} triangles of its physical group are not boundary faces of the mesh (loads act on the boundary)",
-                        physical.off_boundary
-                    ),
-                });
+                return Err(format!(
+                    "{} triangles of its physical group are not boundary faces of the mesh (loads act on the boundary)",
+                    physical.off_boundary
+                ));
             }
             let x = self.mesh.positions();
-            let mut f = physical.faces;
+            let mut f = physical.faces.clone();
             f.retain(|f| f.iter().all(|&v| region.contains(&x[v])));
             f
         } else {
-            FaceSelection::from_region(name, self.mesh, &self.surface, &region).faces
+            FaceSelection::from_region("", self.mesh, &self.surface, region).faces
         };
         if let Some(explicit) = &spec.vertices {
             faces.retain(|f| f.iter().all(|v| explicit.contains(v)));
         }
         if faces.is_empty() {
-            return Err(Self::empty(name, "boundary face"));
+            return Err(empty("boundary face"));
         }
         Ok(faces)
     }
 
-    /// The tets whose rest centroid lies in the selection (never empty); of a physical
-    /// selection, those of its volume group.
-    pub fn tets(&self, name: &str) -> Result<Vec<usize>, SceneError> {
-        let region = self.region(name)?;
-        let candidates = match self.physical(name)? {
-            Some(p) if p.surface && p.tets.is_empty() => {
-                return Err(SceneError::Selection {
-                    name: name.to_string(),
-                    message: "its physical group is a surface group: it selects no tets (name a volume group)".into(),
-                })
-            }
-            Some(p) => p.tets,
+    /// The selected tets (see [`Selections::tets`]).
+    fn tets(&self, region: &Region, physical: Option<&Physical>) -> Result<Vec<usize>, String> {
+        let candidates = match physical {
+            Some(p) if p.surface && p.tets.is_empty() => return Err(
+                "its physical group is a surface group: it selects no tets (name a volume group)"
+                    .into(),
+            ),
+            Some(p) => p.tets.clone(),
             None => (0..self.mesh.num_tets()).collect(),
         };
         let tets: Vec<usize> = candidates
@@ -328,24 +365,10 @@ impl<'a> Selections<'a> {
             .filter(|&e| region.contains(&self.mesh.centroid(e)))
             .collect();
         if tets.is_empty() {
-            return Err(Self::empty(name, "tet"));
+            return Err(empty("tet"));
         }
         Ok(tets)
     }
-}
-
-/// The groups a generator names (its mesh is rebuilt: cheap beside a solve), `None` for a
-/// generator that names none.
-fn generated_groups(spec: &MeshSpec) -> Result<Option<PhysicalGroups>, SceneError> {
-    Ok(Some(match spec {
-        MeshSpec::Spine { res } => generate::spine_arm(*res)?.1,
-        MeshSpec::Cushion { res } => generate::cushion(*res)?.1,
-        MeshSpec::Bubble { res } => generate::bubble(*res)?.1,
-        MeshSpec::Finger { res } => generate::finger(*res)?.1,
-        MeshSpec::Torso { res } => generate::torso(*res)?.1,
-        MeshSpec::Creature { res } => generate::creature(*res)?.1,
-        _ => return Ok(None),
-    }))
 }
 
 /// The region of a selection: the intersection of its primitives.
@@ -408,13 +431,15 @@ fn region(spec: &SelectionSpec, default_tolerance: f64) -> Result<Region, String
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{BoxSpec, PlaneSpec, RadialSpec};
+    use crate::format::{BoxSpec, PlaneSpec, RadialSpec};
     use isochor_mesh::generate::box_grid;
 
-    fn generated() -> MeshSpec {
-        MeshSpec::Explicit {
-            positions: Vec::new(),
-            tets: Vec::new(),
+    /// `mesh` as a generated scene mesh without groups.
+    fn generated(mesh: ElementMesh) -> SceneMesh {
+        SceneMesh {
+            mesh,
+            groups: None,
+            source: "a generated mesh".into(),
         }
     }
 
@@ -463,8 +488,7 @@ mod tests {
     fn selections_pick_vertices_faces_and_tets() {
         let mesh =
             ElementMesh::linear(box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap());
-        let specs = specs();
-        let s = Selections::new(&mesh, &generated(), &specs).unwrap();
+        let s = Selections::new(&generated(mesh), &specs()).unwrap();
         assert_eq!(s.vertices("left").unwrap().len(), 9);
         assert_eq!(s.nodes("left").unwrap(), s.vertices("left").unwrap());
         assert_eq!(s.faces("left").unwrap().len(), 8);
@@ -487,12 +511,11 @@ mod tests {
     #[test]
     fn selections_on_quadratic_tets_include_the_mid_edge_nodes() {
         let mesh = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [2, 2, 2]).unwrap();
-        let mesh = ElementMesh::quadratic(mesh);
-        let specs = specs();
-        let s = Selections::new(&mesh, &generated(), &specs).unwrap();
+        let mesh = generated(ElementMesh::quadratic(mesh));
+        let s = Selections::new(&mesh, &specs()).unwrap();
         let left = s.nodes("left").unwrap();
         assert_eq!(left.len(), 25);
-        assert!(left.iter().all(|&n| mesh.nodes()[n].x.abs() < 1e-12));
+        assert!(left.iter().all(|&n| mesh.mesh.nodes()[n].x.abs() < 1e-12));
         assert_eq!(s.nodes("corner").unwrap().len(), 5);
     }
 }

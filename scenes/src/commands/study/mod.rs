@@ -26,11 +26,12 @@
 //! Outputs: `study.csv`, `study.md`, the log-log plot `study.png` of error against time and
 //! `study-unknowns.png`, the probe against the unknowns (log scale) with the reference line.
 
+use crate::commands::run::{run_scene, RunOptions};
+use crate::error::SceneError;
+use crate::format::overrides::{parse_sweep, Override};
+use crate::format::{ElementName, SceneSource};
 use crate::output::{finish_plot, plot_error, range, tick, write_file, OutputDir};
-use crate::overrides::{parse_sweep, Override};
-use crate::result::RunResult;
-use crate::run::{run_scene, RunOptions};
-use crate::{SceneError, SceneSource};
+use crate::record::RunResult;
 use isochor_mesh::element::TetElement;
 use isochor_solvers::{Method, Simulation};
 use plotters::prelude::*;
@@ -114,12 +115,9 @@ impl ReferenceSpec {
 
 /// Parses one element name (`tet4`, `tet10`).
 pub fn parse_element(name: &str) -> Result<TetElement, SceneError> {
-    TetElement::from_name(name).ok_or_else(|| {
-        SceneError::Usage(format!(
-            "unknown element '{name}' (valid: {})",
-            TetElement::ALL.map(TetElement::name).join(", ")
-        ))
-    })
+    name.parse::<ElementName>()
+        .map(|e| e.0)
+        .map_err(SceneError::Usage)
 }
 
 /// Parses a comma-separated element list (`--elements tet4,tet10`).
@@ -398,7 +396,7 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
                     let unknowns = if over_limit {
                         None
                     } else {
-                        let built = crate::problem::build(&scene)?;
+                        let built = crate::resolve::build(&scene)?;
                         Some(Simulation::new(built.problem, built.settings)?.num_dofs())
                     };
                     if over_limit || unknowns.is_some_and(|u| u > limit) {

@@ -9,8 +9,11 @@
 //!   is refused, naming the key that drives the estimate. All size arithmetic is in `f64`,
 //!   which cannot wrap.
 
-use crate::scene::{LinearName, MeshSpec, Scene, SteppingSpec, ZoneKind};
-use crate::SceneError;
+use super::mesh::MeshSpec;
+use super::names::{LinearName, ZoneKind};
+use super::scene::Scene;
+use super::stepping::SteppingSpec;
+use crate::error::SceneError;
 use isochor_mesh::element::TetElement;
 use isochor_solvers::{Method, AUTO_DIRECT_UNKNOWNS};
 use std::io::{BufRead, BufReader, Read};
@@ -405,9 +408,9 @@ mod tests {
     fn scene(sets: &[&str]) -> Scene {
         let overrides: Vec<_> = sets
             .iter()
-            .map(|s| crate::Override::parse(s).unwrap())
+            .map(|s| crate::format::Override::parse(s).unwrap())
             .collect();
-        crate::load_scene("cantilever", None, &overrides).unwrap()
+        crate::format::load_scene("cantilever", None, &overrides).unwrap()
     }
 
     #[test]

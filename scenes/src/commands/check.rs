@@ -3,10 +3,9 @@
 //! each selection's size and each region's volume are reported, and optionally a VTU of the
 //! rest mesh shows the selections and regions.
 
-use crate::problem;
-use crate::scene::Scene;
-use crate::selection::Selections;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::format::Scene;
+use crate::resolve::{self, Built};
 use isochor_mesh::io::{write_vtu_elements, Field, VtuEncoding};
 use isochor_solvers::Simulation;
 use std::fmt::Write as _;
@@ -63,10 +62,14 @@ pub struct CheckReport {
 /// per selection (1 on its vertices) and the cell fields `region` and `sel_NAME` (1 on the
 /// selection's tets).
 pub fn check_scene(scene: &Scene, vtu: Option<&Path>) -> Result<CheckReport, SceneError> {
-    let built = problem::build(scene)?;
-    let mesh = built.problem.mesh.clone();
-    let simulation = Simulation::new(built.problem, built.settings)?;
-    let selections = Selections::new(&mesh, &scene.mesh, &scene.selections)?;
+    let Built {
+        problem,
+        settings,
+        selections,
+        ..
+    } = resolve::build(scene)?;
+    let mesh = problem.mesh.clone();
+    let simulation = Simulation::new(problem, settings)?;
     let volumes = mesh.volumes_at(mesh.nodes());
     let regions = simulation.regions();
     let mut sizes: Vec<RegionSize> = regions
@@ -137,7 +140,7 @@ pub fn check_scene(scene: &Scene, vtu: Option<&Path>) -> Result<CheckReport, Sce
 }
 
 /// The length of a selection, or why it is empty.
-fn count<T>(selected: Result<Vec<T>, SceneError>) -> Result<usize, String> {
+fn count<T>(selected: Result<&[T], SceneError>) -> Result<usize, String> {
     selected.map(|v| v.len()).map_err(|e| e.to_string())
 }
 

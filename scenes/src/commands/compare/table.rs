@@ -134,7 +134,7 @@ impl Comparison {
 
     /// The columns for people: the sweep and the label first, then what differs between runs.
     fn columns(&self) -> Vec<Column> {
-        let cell = |f: &dyn Fn(&crate::RunResult) -> String| -> Vec<String> {
+        let cell = |f: &dyn Fn(&crate::record::RunResult) -> String| -> Vec<String> {
             self.rows
                 .iter()
                 .map(|row| row.result.as_ref().map_or(String::new(), f))
@@ -180,7 +180,7 @@ impl Comparison {
         ));
         let paper = self.paper_probes();
         for probe in self.probe_names() {
-            let shown = |r: &crate::RunResult| {
+            let shown = |r: &crate::record::RunResult| {
                 r.probes
                     .get(&probe)
                     .map_or(String::new(), |v| significant(self.shown(&probe, *v)))

@@ -10,9 +10,9 @@
 //!   volume change against time, one line per run (Fig. 8 of Sheen et al. 2021).
 
 use super::Comparison;
+use crate::error::SceneError;
 use crate::output::{draw_legend, finish_plot, plot_error, range, register_font, tick};
-use crate::result::{RunResult, StepRecord};
-use crate::SceneError;
+use crate::record::{RunResult, StepRecord};
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -9,7 +9,8 @@
 //! `VALUE` is read as a TOML value (`0.4999`, `4`, `true`, `[0, -9.8, 0]`, `"text"`) and
 //! otherwise taken as a bare string (`mixed-p1`, `meshes/tube.msh`).
 
-use crate::SceneError;
+use super::material::{rename_aliases, MATERIAL_ALIASES};
+use crate::error::SceneError;
 use toml::Value;
 
 /// Flat parameter names and the dotted keys they set.
@@ -28,7 +29,8 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("ogden", "material.ogden"),
     ("rho", "material.rho"),
     ("density", "material.rho"),
-    ("lambda", "material.lambda"),
+    ("zonal_penalty", "material.zonal_penalty"),
+    ("lambda", "material.zonal_penalty"),
     ("beta", "material.beta"),
     ("epsilon", "material.epsilon"),
     ("kappa", "material.kappa"),
@@ -147,7 +149,39 @@ pub fn flat_names() -> Vec<&'static str> {
 /// Applies overrides in order to a scene's TOML tree (a later one wins). A relative
 /// `mesh=PATH` is resolved against the working directory.
 pub fn apply_all(tree: &mut Value, overrides: &[Override]) -> Result<(), SceneError> {
+    rename_material_aliases(tree);
     overrides.iter().try_for_each(|o| apply(tree, o))
+}
+
+/// Renames the old spellings of the keys of the tree's `[material]` and regions' material
+/// tables, so that an override in the new spelling replaces the old key instead of joining it.
+fn rename_material_aliases(tree: &mut Value) {
+    let Some(root) = tree.as_table_mut() else {
+        return;
+    };
+    if let Some(Value::Table(m)) = root.get_mut("material") {
+        rename_aliases(m);
+    }
+    if let Some(Value::Array(regions)) = root.get_mut("regions") {
+        for region in regions {
+            if let Some(Value::Table(m)) = region.get_mut("material") {
+                rename_aliases(m);
+            }
+        }
+    }
+}
+
+/// A dotted key with the old spelling of a material key replaced by the new one
+/// (`material.lambda` is `material.zonal_penalty`).
+fn canonical(path: String) -> String {
+    let Some((table, key)) = path.rsplit_once('.') else {
+        return path;
+    };
+    let is_material = table == "material" || table.ends_with(".material");
+    match MATERIAL_ALIASES.iter().find(|(old, _)| *old == key) {
+        Some((_, new)) if is_material => format!("{table}.{new}"),
+        _ => path,
+    }
 }
 
 /// Refuses a command line's overrides that set one parameter twice, under one name or two
@@ -180,7 +214,7 @@ pub fn check_conflicts(overrides: &[Override]) -> Result<(), SceneError> {
 fn target(o: &Override) -> String {
     match (o.key.as_str(), &o.value) {
         ("zones", Value::String(s)) if k_ring(s).is_some() => "zones".into(),
-        (key, _) => dotted(key),
+        (key, _) => canonical(dotted(key)),
     }
 }
 
@@ -260,7 +294,7 @@ pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
             }
         }
     }
-    let path = resolve(tree, &o.key).map_err(err)?;
+    let path = canonical(resolve(tree, &o.key).map_err(err)?);
     // Young's modulus, the shear modulus and a model's constants are alternatives: setting
     // one drops the others.
     if let Some(group) = stiffness_group(&path) {

@@ -5,18 +5,15 @@
 //! infinite values survive) into the run's output folder, atomically: a new file renamed
 //! over the old one.
 
-use crate::output::write_file;
-use crate::result::StepRecord;
-use crate::run::RunOptions;
-use crate::scene::Scene;
-use crate::SceneError;
+use super::options::RunOptions;
+use crate::error::SceneError;
+use crate::format::Scene;
+use crate::output::{write_file, CHECKPOINT_FILE};
+use crate::record::StepRecord;
 use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, Progress, State};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-
-/// The file name of a checkpoint in an output folder.
-pub const CHECKPOINT_FILE: &str = "checkpoint.toml";
 
 /// The format version; a checkpoint of another version is refused.
 const VERSION: u32 = 1;
