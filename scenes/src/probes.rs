@@ -155,7 +155,7 @@ fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
             volume_ratio(mesh, x, tets).map_err(message)? - 1.0
         }
         ProbeSpec::ChamberVolumeRatio { selection } => {
-            enclosed_volume_ratio(mesh, x, &selections.faces(selection)?).map_err(message)?
+            enclosed_volume_ratio(mesh, x, selections.faces(selection)?).map_err(message)?
         }
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),

@@ -9,8 +9,9 @@
 //! - `compare-energy.png` (dynamic scenes): the total and the potential energy and the
 //!   volume change against time, one line per run (Fig. 8 of Sheen et al. 2021).
 
-use super::Comparison;
+use super::comparison::{CompareRow, Comparison};
 use crate::error::SceneError;
+use crate::format::overrides::dotted;
 use crate::output::{draw_legend, finish_plot, plot_error, range, register_font, tick};
 use crate::record::{RunResult, StepRecord};
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
@@ -32,7 +33,7 @@ struct SweepAxis {
 impl SweepAxis {
     fn new(comparison: &Comparison) -> SweepAxis {
         let key = comparison.sweep_key.clone().unwrap_or_default();
-        let nu = super::dotted(&key) == "material.nu";
+        let nu = dotted(&key) == "material.nu";
         let mut axis = SweepAxis {
             nu,
             title: if nu { "0.5 - nu".into() } else { key },
@@ -108,7 +109,7 @@ where
     X::CoordDescType: ValueFormatter<f64>,
 {
     let labels = comparison.labels();
-    let point = |row: &super::CompareRow, value: f64| {
+    let point = |row: &CompareRow, value: f64| {
         Some((axis.x(row.sweep_number()?), comparison.shown(probe, value)))
     };
     let ours = |label: &str| -> Vec<(f64, f64)> {

@@ -2,7 +2,8 @@
 //! for people (screen and `compare.md`): probes in their display units beside the published
 //! values, columns that are equal in every row moved to a line above, then the factors.
 
-use super::Comparison;
+use super::comparison::Comparison;
+use crate::format::overrides::dotted;
 use std::fmt::Write;
 
 /// The width the screen tables fit in (wider tables are split, repeating the row labels).
@@ -161,7 +162,7 @@ impl Comparison {
         if self
             .sweep_key
             .as_deref()
-            .is_none_or(|k| super::dotted(k) != "material.nu")
+            .is_none_or(|k| dotted(k) != "material.nu")
         {
             columns.push(Column::new("nu", cell(&|r| r.nu.to_string())));
         }
