@@ -11,7 +11,7 @@
 //!
 //! 1. [`error`](SceneError) and [`record`]: the errors, and the records of a run
 //!    ([`RunResult`], [`StepRecord`]), which outputs and commands both read.
-//! 2. [`format`]: the scene format, one file per section, the names, `--set` overrides,
+//! 2. [`format`](mod@format): the scene format, one file per section, the names, `--set` overrides,
 //!    limits, loading built-in and file scenes, and every check before a run.
 //! 3. [`resolve`]: scene -> [`resolve::Built`], once: the mesh and its groups, every named
 //!    selection as node/vertex/face/tet sets, the regions, the zones, the solver's problem.

@@ -1,5 +1,5 @@
 //! The scene format: serde structs of a TOML scene file, one file per section, the names a
-//! scene chooses from ([`names`]), parsing ([`parse`]), every check before a run
+//! scene chooses from ([`names`]), parsing (`parse`), every check before a run
 //! ([`validate`], [`limits`]), `--set` overrides ([`overrides`]) and finding a scene
 //! ([`load`], [`builtin`]). Every struct denies unknown keys, so a typo is an error that names
 //! the key and lists the valid ones.

@@ -147,6 +147,11 @@ fn check_replaceable(dest: &Path) -> Result<(), SceneError> {
     }
 }
 
+/// Writes a whole file.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
+    std::fs::write(path, bytes).map_err(|e| SceneError::io(path, e))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
