@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Checks the VTU frames of an `isochor run --out DIR` folder with meshio (and pyvista, if
 installed): the frame.pvd lists every frame_*.vtu and nothing else, every frame reads with the
-point and cell counts of summary.json (`nodes`, `tets`) and carries a displacement array.
+point and cell counts of summary.json (`nodes`, `tets`) and carries a displacement array, and
+the frames' points are the rest positions of the first frame (the default `output.points =
+"rest"`: warp them by `displacement`) or, with `output.points = "deformed"`, those rest
+positions plus `displacement`.
 Given a second folder of the same scene (e.g. one written with --set vtu_encoding=binary and
 one with vtu_encoding=ascii), it also checks that the two runs' displacements agree frame by
 frame.
@@ -52,6 +55,7 @@ def check_folder(folder):
     if sorted(listed) != on_disk:
         fail(f"{pvd} lists {listed}, the folder has {on_disk}")
     displacements = {}
+    rest = None
     for name in listed:
         path = folder / name
         mesh = meshio.read(path)
@@ -63,6 +67,14 @@ def check_folder(folder):
         if "displacement" not in mesh.point_data:
             fail(f"{path}: no displacement point data (has {list(mesh.point_data)})")
         displacements[name] = np.asarray(mesh.point_data["displacement"])
+        if rest is None:
+            rest = np.asarray(mesh.points)
+        at_rest = np.array_equal(mesh.points, rest)
+        deformed = np.allclose(mesh.points, rest + displacements[name], rtol=0, atol=1e-12
+                               * max(1.0, float(np.abs(rest).max())))
+        if not (at_rest or deformed):
+            fail(f"{path}: the points are neither the rest positions nor the rest positions "
+                 "plus the displacement")
         if pyvista is not None:
             grid = pyvista.read(path)
             if (grid.n_points, grid.n_cells) != (nodes, tets):

@@ -17,11 +17,15 @@
 //! written), 2 on a command-line usage error, 3 when `run` completed but a step did not
 //! converge (its outputs and JSON are still written, with `"converged": false`).
 
-use crate::compare::{compare, describe_output, parse_methods, CompareRequest};
-use crate::overrides::Override;
-use crate::penalty_plot::write_penalty_plot;
-use crate::study::{parse_elements, study, ReferenceSpec, StudyRequest};
-use crate::{builtin, resume_run, run_named, RunResult, SceneError, SceneSource};
+use crate::commands::check::check_scene;
+use crate::commands::compare::{compare, describe_output, parse_methods, CompareRequest};
+use crate::commands::penalties::write_penalty_plot;
+use crate::commands::run::{resume_run, run_named};
+use crate::commands::study::{parse_elements, study, ReferenceSpec, StudyRequest};
+use crate::error::SceneError;
+use crate::format::overrides::{check_conflicts, Override};
+use crate::format::{builtin, SceneSource};
+use crate::record::RunResult;
 use clap::{Parser, Subcommand};
 use std::io::Write;
 use std::path::PathBuf;
@@ -187,7 +191,7 @@ fn parse_overrides(set: &[String]) -> Result<Vec<Override>, SceneError> {
         .iter()
         .map(|s| Override::parse(s))
         .collect::<Result<Vec<_>, _>>()?;
-    crate::overrides::check_conflicts(&overrides)?;
+    check_conflicts(&overrides)?;
     Ok(overrides)
 }
 
@@ -239,7 +243,7 @@ pub fn execute(cli: Cli, stdout: &mut dyn Write) -> Result<i32, SceneError> {
         } => {
             let overrides = parse_overrides(&set)?;
             let scene = SceneSource::resolve(&scene)?.load(variant.as_deref(), &overrides)?;
-            let report = crate::check::check_scene(&scene, vtu.as_deref())?;
+            let report = check_scene(&scene, vtu.as_deref())?;
             write!(stdout, "{}", report.to_text()).map_err(io)?;
             if let Some(path) = vtu {
                 writeln!(stdout, "wrote {}", path.display()).map_err(io)?;

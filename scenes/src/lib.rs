@@ -1,43 +1,41 @@
 //! # isochor-scenes
 //!
-//! The top layer of isochor: the TOML scene format ([`scene`]), `--set` overrides
-//! ([`overrides`]), the built-in scene library ([`builtin`], reproducing the experiments of
-//! Francu et al. 2021 and Sheen et al. 2021), problem construction ([`problem`]), probes
-//! ([`probes`]), bounds checked before allocating ([`limits`]), output writers ([`output`]:
-//! VTU frames, `summary.json`, CSV logs, PNG plots), checkpoints of long runs
-//! ([`checkpoint`]), scene checks before a run ([`check`]), method comparisons ([`compare`])
-//! beside published values ([`paper`]), the penalty plot of Fig. 3 of Sheen et al.
-//! ([`penalty_plot`]) and the `isochor` command-line program ([`cli`]).
+//! The top layer of isochor: the TOML scene format, the built-in scene library (reproducing
+//! the experiments of Francu et al. 2021 and Sheen et al. 2021), resolving a scene into the
+//! solver's problem, probes, output writers and the commands of the `isochor` program.
 //!
-//! Data flows one way: scene text -> [`Scene`] -> [`problem::Built`] -> solver -> frames and a
-//! [`RunResult`].
+//! ## Layers
+//!
+//! Each layer imports only the layers below it (and the crates below this one), never one
+//! above, and no two modules import each other:
+//!
+//! 1. [`error`](SceneError) and [`record`]: the errors, and the records of a run
+//!    ([`RunResult`], [`StepRecord`]), which outputs and commands both read.
+//! 2. [`format`](mod@format): the scene format, one file per section, the names, `--set` overrides,
+//!    limits, loading built-in and file scenes, and every check before a run.
+//! 3. [`resolve`]: scene -> [`resolve::Built`], once: the mesh and its groups, every named
+//!    selection as node/vertex/face/tet sets, the regions, the zones, the solver's problem.
+//! 4. [`probes`] and [`output`] (side by side, neither imports the other): named values
+//!    measured on a resolved scene's states; frames, CSV, summary, plots, preview and the
+//!    atomic output folder.
+//! 5. [`commands`]: run, resume, check, compare, study and penalties.
+//! 6. [`cli`] (and the `isochor` binary on top).
+//!
+//! Data flows one way: scene text -> [`Scene`] -> [`resolve::Built`] -> solver -> frames and
+//! a [`RunResult`].
 
 #![deny(missing_docs)]
 
-pub mod builtin;
-pub mod check;
-pub mod checkpoint;
-mod checks;
 pub mod cli;
-pub mod compare;
+pub mod commands;
 mod error;
-pub mod limits;
-pub mod load;
+pub mod format;
 pub mod output;
-pub mod overrides;
-pub mod paper;
-pub mod penalty_plot;
 pub mod probes;
-pub mod problem;
-pub mod result;
-pub mod run;
-pub mod scene;
-pub mod selection;
-pub mod study;
+pub mod record;
+pub mod resolve;
 
+pub use commands::run::{resume_run, run_named, run_scene, RunOptions};
 pub use error::SceneError;
-pub use load::{load_scene, SceneSource};
-pub use overrides::Override;
-pub use result::{ContactRecord, RunResult, StepRecord};
-pub use run::{resume_run, run_named, run_scene, RunOptions};
-pub use scene::Scene;
+pub use format::{builtin, load_scene, Override, Scene, SceneSource};
+pub use record::{ContactRecord, RunResult, StepRecord};

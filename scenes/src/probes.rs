@@ -1,13 +1,12 @@
 //! Probes: named scalars measured on a state (the final one of a run), the numbers the
 //! papers' tables and figures report.
 
-use crate::problem::build_zones;
-use crate::result::StepRecord;
-use crate::scene::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
-use crate::selection::Selections;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::format::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
+use crate::record::StepRecord;
+use crate::resolve::Selections;
 use isochor_mesh::probes::{displacement_at, enclosed_volume_ratio, volume_change, volume_ratio};
-use isochor_mesh::{ElementMesh, TetMesh, Vec3, TET_FACES};
+use isochor_mesh::{ElementMesh, TetMesh, Vec3, Zones, TET_FACES};
 use isochor_solvers::Energies;
 use std::collections::{BTreeMap, HashMap};
 
@@ -16,6 +15,10 @@ use std::collections::{BTreeMap, HashMap};
 pub struct ProbeInput<'a> {
     /// The rest mesh.
     pub mesh: &'a ElementMesh,
+    /// The scene's selections on it.
+    pub selections: &'a Selections,
+    /// The scene's zones, if it has a zone probe (see [`crate::resolve::Built::zones`]).
+    pub zones: Option<&'a Zones>,
     /// Positions of the state.
     pub positions: &'a [Vec3],
     /// Pressure per element (empty if unknown).
@@ -35,30 +38,24 @@ pub fn evaluate(
     scene: &Scene,
     input: &ProbeInput<'_>,
 ) -> Result<BTreeMap<String, f64>, SceneError> {
-    let selections = Selections::new(input.mesh, &scene.mesh, &scene.selections)?;
     scene
         .probes
         .iter()
         .map(|(name, spec)| {
-            let value = probe(scene, spec, input, &selections).map_err(|e| e.named(name))?;
+            let value = probe(spec, input).map_err(|e| e.named(name))?;
             Ok((name.clone(), value))
         })
         .collect()
 }
 
-/// Evaluates the probe `name` of `scene` alone on `selections` (built once per run: it runs
-/// after every step for `output.potential_against`).
-pub fn evaluate_one(
-    scene: &Scene,
-    name: &str,
-    input: &ProbeInput<'_>,
-    selections: &Selections<'_>,
-) -> Result<f64, SceneError> {
+/// Evaluates the probe `name` of `scene` alone (it runs after every step for
+/// `output.potential_against`).
+pub fn evaluate_one(scene: &Scene, name: &str, input: &ProbeInput<'_>) -> Result<f64, SceneError> {
     let spec = scene.probes.get(name).ok_or_else(|| SceneError::Probe {
         name: name.to_string(),
         message: "the scene has no such probe".into(),
     })?;
-    probe(scene, spec, input, selections).map_err(|e| e.named(name))
+    probe(spec, input).map_err(|e| e.named(name))
 }
 
 enum ProbeError {
@@ -90,14 +87,12 @@ fn over_run(input: &ProbeInput<'_>, value: impl Fn(&StepRecord) -> f64) -> f64 {
     input.history.iter().map(value).fold(0.0, f64::max)
 }
 
-fn probe(
-    scene: &Scene,
-    spec: &ProbeSpec,
-    input: &ProbeInput<'_>,
-    selections: &Selections<'_>,
-) -> Result<f64, ProbeError> {
+fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
     let ProbeInput {
-        mesh, positions: x, ..
+        mesh,
+        positions: x,
+        selections,
+        ..
     } = *input;
     let rest = mesh.nodes();
     let rest_volumes = || mesh.volumes_at(rest);
@@ -142,13 +137,15 @@ fn probe(
         ProbeSpec::VolumeChange => volume_change(mesh, x).map_err(message)?,
         ProbeSpec::VolumeRatio { selection } => {
             let elements: Vec<usize> = match selection {
-                Some(name) => selections.tets(name)?,
+                Some(name) => selections.tets(name)?.to_vec(),
                 None => (0..mesh.num_elements()).collect(),
             };
             volume_ratio(mesh, x, &elements).map_err(message)?
         }
         ProbeSpec::ZoneVolumeChange { zone } => {
-            let zones = build_zones(scene, mesh.corners(), selections)?;
+            let zones = input
+                .zones
+                .ok_or_else(|| ProbeError::Message("the scene's zones were not resolved".into()))?;
             let tets = zones.iter().nth(*zone).ok_or_else(|| {
                 ProbeError::Message(format!(
                     "zone {zone} does not exist: the scene has {} zones",
@@ -158,7 +155,7 @@ fn probe(
             volume_ratio(mesh, x, tets).map_err(message)? - 1.0
         }
         ProbeSpec::ChamberVolumeRatio { selection } => {
-            enclosed_volume_ratio(mesh, x, &selections.faces(selection)?).map_err(message)?
+            enclosed_volume_ratio(mesh, x, selections.faces(selection)?).map_err(message)?
         }
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),
@@ -377,12 +374,15 @@ mod tests {
         scene: &Scene,
         deform: impl Fn(&Vec3) -> Vec3,
     ) -> Result<BTreeMap<String, f64>, SceneError> {
-        let mesh = crate::problem::build(scene).unwrap().problem.mesh;
+        let built = crate::resolve::build(scene).unwrap();
+        let mesh = built.problem.mesh;
         let positions: Vec<Vec3> = mesh.nodes().iter().map(deform).collect();
         evaluate(
             scene,
             &ProbeInput {
                 mesh: &mesh,
+                selections: &built.selections,
+                zones: built.zones.as_ref(),
                 positions: &positions,
                 tet_pressures: &[],
                 constraint_residual: 0.0,

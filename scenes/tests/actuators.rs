@@ -9,9 +9,9 @@
 
 use isochor_mesh::element::TetElement;
 use isochor_mesh::generate;
-use isochor_scenes::problem::build_mesh;
-use isochor_scenes::scene::SelectionSpec;
-use isochor_scenes::selection::Selections;
+use isochor_scenes::format::SelectionSpec;
+use isochor_scenes::resolve::mesh_with_groups;
+use isochor_scenes::resolve::Selections;
 use isochor_scenes::{builtin, load_scene, run_scene, Override, RunOptions, RunResult};
 
 /// Runs a variant of a built-in actuator in its reduced version and checks it converged.
@@ -87,8 +87,8 @@ fn finger_bends_towards_its_base_and_mixed_bends_more() {
 #[test]
 fn generated_groups_resolve_like_a_files() {
     let scene = load_scene("cushion", None, &[]).unwrap();
-    let mesh = build_mesh(&scene.mesh, TetElement::Tet4).unwrap();
-    let s = Selections::new(&mesh, &scene.mesh, &scene.selections).unwrap();
+    let mesh = mesh_with_groups(&scene.mesh, TetElement::Tet4, true).unwrap();
+    let s = Selections::new(&mesh, &scene.selections).unwrap();
     let (_, groups) = generate::cushion(2).unwrap();
     assert_eq!(
         s.faces("chamber").unwrap(),
@@ -103,9 +103,10 @@ fn generated_groups_resolve_like_a_files() {
     };
     specs.insert("named".into(), named("clamped"));
     specs.insert("unknown".into(), named("chamber"));
-    let mesh = build_mesh(&spine.mesh, TetElement::Tet10).unwrap();
-    let s = Selections::new(&mesh, &spine.mesh, &specs).unwrap();
-    let sorted = |mut f: Vec<[usize; 3]>| {
+    let mesh = mesh_with_groups(&spine.mesh, TetElement::Tet10, true).unwrap();
+    let s = Selections::new(&mesh, &specs).unwrap();
+    let sorted = |f: &[[usize; 3]]| {
+        let mut f = f.to_vec();
         f.sort_unstable();
         f
     };

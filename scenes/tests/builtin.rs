@@ -4,8 +4,8 @@
 //! analysis or from the paper (the absolute values are pinned in
 //! `validation/tests/reference.rs`).
 
-use isochor_scenes::problem::build;
-use isochor_scenes::scene::{Scene, SteppingSpec};
+use isochor_scenes::format::{Scene, SteppingSpec};
+use isochor_scenes::resolve::build;
 use isochor_scenes::{
     builtin, load_scene, run_scene, Override, RunOptions, RunResult, SceneSource, StepRecord,
 };
@@ -621,10 +621,10 @@ fn stretch_and_twist_cubes_of_table_1() {
     }
 }
 
-/// `zones.kind = "none"` with `lambda = 0` leaves the volume free (the F-bar energy is
-/// distortional): refused, naming the key.
+/// `zones.kind = "none"` with `zonal_penalty = 0` (or its old spelling `lambda = 0`) leaves
+/// the volume free (the F-bar energy is distortional): refused, naming the key.
 #[test]
-fn no_zones_with_lambda_zero_is_refused() {
+fn no_zones_with_zonal_penalty_zero_is_refused() {
     let e = load_scene(
         "stretch-cube",
         Some("ours-no-volume-constraint"),
@@ -632,7 +632,10 @@ fn no_zones_with_lambda_zero_is_refused() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("material.lambda") && e.contains("none"), "{e}");
+    assert!(
+        e.contains("material.zonal_penalty") && e.contains("none"),
+        "{e}"
+    );
 }
 
 /// Local extrema of a per-frame series: the frames where its increments change sign.

@@ -3,9 +3,9 @@
 //! from synthetic runs (with the built-in spine arm's `[paper]` section, Table 2 of Francu
 //! et al. 2021) and end to end on the coarsest cantilever.
 
-use isochor_scenes::compare::{CompareRow, Comparison};
-use isochor_scenes::paper::PaperSpec;
-use isochor_scenes::scene::{LengthUnit, Scene};
+use isochor_scenes::commands::compare::{CompareRow, Comparison};
+use isochor_scenes::format::PaperSpec;
+use isochor_scenes::format::{LengthUnit, Scene};
 use isochor_scenes::{builtin, load_scene, RunResult, SceneError};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -321,7 +321,7 @@ fn bad_paper_keys_are_named() {
         (
             "unit = \"cm\"",
             "unit = \"inch\"",
-            "probes.tip_deflection': unknown variant `inch`",
+            "probes.tip_deflection': unknown value `inch`",
         ),
         // A probe that is not a length takes no unit.
         (

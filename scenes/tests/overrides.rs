@@ -4,9 +4,9 @@
 //! an error that names the key.
 
 use isochor_mesh::{Vec3, Zones};
-use isochor_scenes::overrides::FLAT_KEYS;
-use isochor_scenes::problem::{build, Built};
-use isochor_scenes::scene::{PreviewField, VtuEncodingName};
+use isochor_scenes::format::overrides::FLAT_KEYS;
+use isochor_scenes::format::{PreviewField, VtuEncodingName};
+use isochor_scenes::resolve::{build, Built};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
     Epidermis, Kappa, LinearSolver, Load, MaterialModel, Method, Simulation, StepControl, Stepping,
@@ -159,6 +159,15 @@ const CASES: &[Case] = &[
         reached: |_, b| b.problem.material.density == 900.0,
         bad: "heavy",
     },
+    Case {
+        key: "zonal_penalty",
+        scene: STATIC,
+        setup: &[],
+        value: "3e5",
+        reached: |_, b| b.problem.material.zonal_lambda == 3e5,
+        bad: "-1.0",
+    },
+    // The old spelling of `zonal_penalty`.
     Case {
         key: "lambda",
         scene: STATIC,
@@ -557,8 +566,11 @@ fn a_bad_value_of_every_flat_key_is_a_named_error() {
             .map(|(_, d)| *d)
             .unwrap_or(case.key);
         // The scene's key, a material parameter, or a solver setting, by name.
+        // An old spelling is named by its new one.
+        let new_name = dotted.rsplit('.').next().unwrap_or(dotted);
         let named = error.contains(&format!("key '{dotted}'"))
             || error.contains(&format!("parameter {} = ", case.key))
+            || error.contains(&format!("parameter {new_name} = "))
             || error.contains(&format!("setting: {} ", case.key));
         eprintln!("--set {set}: {error}");
         assert!(

@@ -3,8 +3,8 @@
 //! `inner`, `outer`, `bottom`, `top` and volume group `tube`) clamped by its `bottom` group
 //! and inflated through its `inner` group, as the same run with geometric selections.
 
-use isochor_scenes::problem::build_mesh;
-use isochor_scenes::selection::Selections;
+use isochor_scenes::resolve::mesh_with_groups;
+use isochor_scenes::resolve::Selections;
 use isochor_scenes::{load_scene, run_scene, RunOptions, Scene, SceneError};
 use std::path::{Path, PathBuf};
 
@@ -107,9 +107,10 @@ fn physical_selections_on_quadratic_tets() {
          [selections.body]\nphysical = \"tube\"\n"
     );
     let mut scene = write_scene(&dir, "tet10.toml", &file_mesh(), &selections).unwrap();
-    scene.element = isochor_scenes::scene::ElementName(isochor_mesh::element::TetElement::Tet10);
-    let mesh = build_mesh(&scene.mesh, scene.element()).unwrap();
-    let s = Selections::new(&mesh, &scene.mesh, &scene.selections).unwrap();
+    scene.element = isochor_scenes::format::ElementName(isochor_mesh::element::TetElement::Tet10);
+    let resolved = mesh_with_groups(&scene.mesh, scene.element(), true).unwrap();
+    let s = Selections::new(&resolved, &scene.selections).unwrap();
+    let mesh = &resolved.mesh;
     let x = mesh.nodes();
     let boundary = mesh.boundary().unwrap();
     let bottom: Vec<usize> = {

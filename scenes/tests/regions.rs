@@ -3,7 +3,7 @@
 //! 2 mm strain-limiting layer at z in [0, 0.002], volume groups `soft` and `stiff layer`,
 //! surface group `clamped` at x = 0), and `isochor check`.
 
-use isochor_scenes::check::check_scene;
+use isochor_scenes::commands::check::check_scene;
 use isochor_scenes::{load_scene, run_scene, RunOptions, Scene, SceneError};
 use std::path::{Path, PathBuf};
 

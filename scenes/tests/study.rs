@@ -8,7 +8,7 @@
 //! expected numbers below come from it, not from the bisection the implementation runs.
 
 use isochor_mesh::element::TetElement;
-use isochor_scenes::study::{
+use isochor_scenes::commands::study::{
     parse_elements, study, Reference, ReferenceSpec, Richardson, Study, StudyRequest, StudyRun,
     LEVELS,
 };

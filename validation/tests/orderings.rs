@@ -3,7 +3,7 @@
 //! is stopped by the same Newton tolerances. Behind `#[ignore]`: the fill and factorization
 //! time of both orderings on the systems of docs/performance.md's table (run in release).
 
-use isochor_scenes::problem::build;
+use isochor_scenes::resolve::build;
 use isochor_scenes::{load_scene, Override};
 use isochor_solvers::linear::Ordering;
 use isochor_solvers::{RunSummary, Simulation, Vec3};

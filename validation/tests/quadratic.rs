@@ -20,7 +20,7 @@ use isochor_mesh::generate::{ball, ball_surface, box_grid, cylinder, cylinder_su
 use isochor_mesh::probes::displacement_at;
 use isochor_mesh::{ElementMesh, TetMesh, Vec3};
 use isochor_scenes::probes::checkerboard;
-use isochor_scenes::{load_scene, problem::build, Override};
+use isochor_scenes::{load_scene, resolve::build, Override};
 use isochor_solvers::{
     Dirichlet, Material, Method, Motion, Problem, Settings, Simulation, Stepping,
 };

@@ -35,8 +35,8 @@
 use crate::common;
 
 use common::run;
-use isochor_scenes::problem::build;
-use isochor_scenes::scene::{ProbeSpec, Scene, SteppingSpec};
+use isochor_scenes::format::{ProbeSpec, Scene, SteppingSpec};
+use isochor_scenes::resolve::build;
 use isochor_scenes::{builtin, load_scene, Override, RunResult};
 use isochor_validation::pinned::{check, pins, Run, Tolerance};
 use std::collections::BTreeSet;

@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::{assert_converged, probe, run};
-use isochor_scenes::{load_scene, problem, Override};
+use isochor_scenes::{load_scene, resolve as problem, Override};
 use isochor_solvers::{Checkpoint, Method, Simulation, State};
 
 fn built(scene: &str, sets: &[&str]) -> problem::Built {

@@ -1,8 +1,11 @@
 //! An output folder that appears whole or not at all.
 
-use crate::checkpoint::CHECKPOINT_FILE;
-use crate::SceneError;
+use crate::error::SceneError;
 use std::path::{Path, PathBuf};
+
+/// The file name of a run's checkpoint in its output folder: a folder holding one is an
+/// unfinished run, kept to be resumed.
+pub const CHECKPOINT_FILE: &str = "checkpoint.toml";
 
 /// Files that mark a folder as an isochor output folder (so it may be replaced).
 const MARKERS: [&str; 4] = ["summary.json", "compare.csv", "study.csv", "penalties.csv"];
@@ -142,6 +145,11 @@ fn check_replaceable(dest: &Path) -> Result<(), SceneError> {
             MARKERS.join(" or ")
         )))
     }
+}
+
+/// Writes a whole file.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
+    std::fs::write(path, bytes).map_err(|e| SceneError::io(path, e))
 }
 
 #[cfg(test)]

@@ -1,7 +1,8 @@
 //! CSV logs: every Newton iteration, and every step.
 
-use crate::result::StepRecord;
-use crate::SceneError;
+use super::atomic::write_file;
+use crate::error::SceneError;
+use crate::record::StepRecord;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -53,7 +54,7 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
             );
         }
     }
-    super::write_file(path, out.as_bytes())
+    write_file(path, out.as_bytes())
 }
 
 /// The `i`-th volume error, empty if not recorded (a run resumed from an older checkpoint).
@@ -94,5 +95,5 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
             s.cuts.len()
         );
     }
-    super::write_file(path, out.as_bytes())
+    write_file(path, out.as_bytes())
 }

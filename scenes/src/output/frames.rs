@@ -1,5 +1,8 @@
 //! VTU frames and their `.pvd` collection, through the mesh crate's writers.
 //!
+//! The frames' points are the rest positions (ParaView's Warp By Vector on `displacement`
+//! shows the deformed body), or with `output.points = "deformed"` the deformed positions.
+//!
 //! Point data: `displacement`, `velocity` (dynamics), `contact_force` (with obstacles),
 //! `pressure` (the nodal pressure unknowns of `mixed-p1`, `mixed-p1-log` and `dual`,
 //! compression positive: minus the multipliers `p = kappa (J - 1)` of the papers, linear in
@@ -8,7 +11,7 @@
 //! hydrostatic pressure in the usual sense is `-mean_stress`), `von_mises`, `J`, `region` (0:
 //! the body's material, `i`: the scene's `i`-th region), `zone` (zonal method).
 
-use crate::SceneError;
+use crate::error::SceneError;
 use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
 use isochor_mesh::{ElementMesh, Vec3};
 use nalgebra::Matrix3;
@@ -93,6 +96,7 @@ pub struct FrameWriter {
     encoding: VtuEncoding,
     zone_ids: Option<Vec<i32>>,
     region_ids: Vec<i32>,
+    deformed_points: bool,
     entries: Vec<(f64, String)>,
 }
 
@@ -115,8 +119,15 @@ impl FrameWriter {
             encoding,
             zone_ids,
             region_ids,
+            deformed_points: false,
             entries: Vec::new(),
         }
+    }
+
+    /// Writes the deformed positions as the frames' points instead of the rest positions.
+    pub fn with_deformed_points(mut self, deformed: bool) -> Self {
+        self.deformed_points = deformed;
+        self
     }
 
     /// Whether frame `index` of `total` is written.
@@ -124,8 +135,9 @@ impl FrameWriter {
         index % self.every == 0 || index == total
     }
 
-    /// Writes frame `index` at time or load `t` (0 is the rest state). 10-node meshes are
-    /// written as VTK quadratic tetrahedra, which ParaView draws curved.
+    /// Writes frame `index` at time or load `t` (0 is the rest state): the rest (or
+    /// deformed) points with the fields of `fields`. 10-node meshes are written as VTK
+    /// quadratic tetrahedra, which ParaView draws curved.
     pub fn write(
         &mut self,
         mesh: &ElementMesh,
@@ -173,9 +185,14 @@ impl FrameWriter {
             points.push(Field::vector("contact_force", contact_forces.to_vec()));
         }
         let name = format!("{}_{index:05}.vtu", self.stem);
+        let points_at = if self.deformed_points {
+            positions
+        } else {
+            mesh.nodes()
+        };
         write_vtu_elements(
             self.dir.join(&name),
-            positions,
+            points_at,
             mesh.kind(),
             mesh.connectivity(),
             &points,

@@ -10,7 +10,7 @@ mod plots;
 mod potential;
 mod preview;
 
-pub use atomic::OutputDir;
+pub use atomic::{write_file, OutputDir, CHECKPOINT_FILE};
 pub use csv::{write_iterations_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
 pub(crate) use plots::{draw_legend, finish_plot, plot_error, range, register_font, tick};
@@ -18,8 +18,8 @@ pub use plots::{plot_energy, plot_residuals};
 pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};
 pub use preview::{write_preview, PreviewOptions};
 
-use crate::result::{RunResult, StepRecord};
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::record::{RunResult, StepRecord};
 use std::path::Path;
 
 /// Writes `summary.json`, the CSV logs and (if `plots`) the PNG plots of a finished run into
@@ -77,9 +77,4 @@ pub fn run_title(result: &RunResult) -> String {
         };
     }
     title
-}
-
-/// Writes a whole file.
-pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
-    std::fs::write(path, bytes).map_err(|e| SceneError::io(path, e))
 }

@@ -6,8 +6,8 @@
 //! - `energy.png`: kinetic, elastic, constraint, external and total energy against time
 //!   (like Fig. 8 of Sheen et al. 2021).
 
-use crate::result::StepRecord;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::record::StepRecord;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 use std::path::Path;

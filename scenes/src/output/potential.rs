@@ -2,10 +2,10 @@
 //! `potential.csv` and `potential.png`, like Fig. 9 of Francu et al. 2021 (energy against the
 //! spine arm's deflection in implicit dynamics; the minimum marks where the run settles).
 
+use super::atomic::write_file;
 use super::plots::{finish_plot, plot_error, range, register_font};
-use super::write_file;
-use crate::result::StepRecord;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::record::StepRecord;
 use plotters::prelude::*;
 use std::fmt::Write;
 use std::path::Path;

@@ -14,8 +14,8 @@
 
 use super::frames::FrameFields;
 use super::plots::{plot_error, register_font};
-use crate::scene::PreviewField;
-use crate::SceneError;
+use crate::error::SceneError;
+use crate::format::PreviewField;
 use isochor_mesh::{ElementMesh, ElementSurface, Vec3};
 use plotters::backend::DrawingBackend;
 use plotters::prelude::*;

@@ -1,0 +1,95 @@
+//! A run in named steps: resolve the scene, check the probes on the rest state, set up the
+//! frames, step, finish.
+
+use super::body::Body;
+use super::checkpoint::RunCheckpoint;
+use super::finish::{finish, Outcome};
+use super::observer::Observer;
+use super::options::RunOptions;
+use crate::error::SceneError;
+use crate::format::{PointsName, Scene};
+use crate::output::{FrameFields, FrameWriter, OutputDir};
+use crate::probes;
+use crate::record::RunResult;
+use crate::resolve::{self, Built};
+use isochor_solvers::Simulation;
+use std::path::PathBuf;
+
+/// Runs `scene` into `out`, from the start or from `resume`.
+pub(super) fn execute(
+    scene: &Scene,
+    options: &RunOptions,
+    out: Option<OutputDir>,
+    resume: Option<RunCheckpoint>,
+) -> Result<(RunResult, Option<PathBuf>), SceneError> {
+    let Built {
+        problem,
+        stepping,
+        settings,
+        selections,
+        zones,
+    } = resolve::build(scene)?;
+    let body = Body::new(&problem, selections, zones);
+    check_probes_at_rest(scene, &body)?;
+    let zone_ids = match &problem.zones {
+        Some(z) => Some(z.tet_zone_ids(body.mesh.num_elements())?),
+        None => None,
+    };
+    let mut sim = Simulation::new(problem, settings)?;
+    let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids)?;
+    let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
+    if let Some(checkpoint) = resume {
+        sim.restore((&checkpoint.solver).into())?;
+        observer.resume(checkpoint);
+    }
+    let outcome = sim.run(stepping, |frame| observer.observe(frame));
+    let wall_time_s = observer.wall_time();
+    observer.finish_stepping();
+    if let Some(e) = observer.error.take() {
+        return Err(e);
+    }
+    let outcome = Outcome {
+        solver: outcome,
+        dofs: sim.num_dofs(),
+        wall_time_s,
+    };
+    finish(scene, options, &body, observer, outcome, out)
+}
+
+/// Evaluates the probes on the rest state, so that a bad probe fails before the run.
+fn check_probes_at_rest(scene: &Scene, body: &Body) -> Result<(), SceneError> {
+    let zeros = vec![0.0; body.mesh.num_elements()];
+    probes::evaluate(scene, &body.probe_input(&body.rest(&zeros)))?;
+    Ok(())
+}
+
+/// The frame writer of a run into `out` that writes VTU frames, its rest frame written.
+fn frame_writer(
+    scene: &Scene,
+    out: Option<&OutputDir>,
+    sim: &Simulation,
+    body: &Body,
+    zone_ids: Option<Vec<i32>>,
+) -> Result<Option<FrameWriter>, SceneError> {
+    let (Some(dir), true) = (out, scene.output.vtu) else {
+        return Ok(None);
+    };
+    let mesh = &body.mesh;
+    let region_ids = sim
+        .regions()
+        .element_regions()
+        .iter()
+        .map(|&r| r as i32)
+        .collect();
+    let mut w = FrameWriter::new(
+        dir.path(),
+        "frame",
+        scene.output.every,
+        scene.output.vtu_encoding.resolve(mesh.num_nodes()),
+        zone_ids,
+        region_ids,
+    )
+    .with_deformed_points(scene.output.points == PointsName::Deformed);
+    w.write(mesh, 0, 0.0, &FrameFields::rest(mesh))?;
+    Ok(Some(w))
+}

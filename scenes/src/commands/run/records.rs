@@ -1,0 +1,83 @@
+//! The records of a run's steps, from the solver's reports.
+
+use crate::record::{ContactRecord, CutRecord, StepRecord};
+use isochor_mesh::ElementMesh;
+use isochor_solvers::{Energies, IterationReport, State, StepReport};
+
+/// The residual histories of a step: per iteration, then the final one.
+struct Residuals {
+    force: Vec<f64>,
+    constraint: Vec<f64>,
+    volume_error: Vec<f64>,
+}
+
+impl Residuals {
+    fn of(report: &StepReport) -> Self {
+        let history = |each: fn(&IterationReport) -> f64, last: f64| {
+            report.iterations.iter().map(each).chain([last]).collect()
+        };
+        Residuals {
+            force: history(|i| i.force_residual, report.force_residual),
+            constraint: history(|i| i.constraint_residual, report.constraint_residual),
+            volume_error: history(|i| i.volume_error, report.volume_error),
+        }
+    }
+}
+
+/// The record of a failed attempt that was retried with a smaller increment.
+pub(super) fn cut_record(report: &StepReport) -> CutRecord {
+    let residuals = Residuals::of(report);
+    CutRecord {
+        t: report.t,
+        increment: report.increment,
+        force_residuals: residuals.force,
+        constraint_residuals: residuals.constraint,
+        volume_errors: residuals.volume_error,
+        error: report.failure.clone().unwrap_or_default(),
+    }
+}
+
+/// The record of one step: its iterations and the state it ended in.
+pub(super) fn record(
+    mesh: &ElementMesh,
+    state: &State,
+    report: &StepReport,
+    inverted_tets: usize,
+    energies: Energies,
+) -> StepRecord {
+    let residuals = Residuals::of(report);
+    StepRecord {
+        step: report.step,
+        t: report.t,
+        increment: report.increment,
+        cuts: Vec::new(),
+        newton_iterations: report.newton_iterations(),
+        converged: report.converged,
+        force_residuals: residuals.force,
+        constraint_residuals: residuals.constraint,
+        volume_errors: residuals.volume_error,
+        step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
+        backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
+        shifts: report.iterations.iter().map(|i| i.regularization).collect(),
+        volume_change: mesh.total_volume_at(&state.positions) / mesh.rest_volume() - 1.0,
+        inverted_tets,
+        kinetic_energy: energies.kinetic,
+        elastic_energy: energies.elastic,
+        constraint_energy: energies.constraint,
+        external_energy: energies.external,
+        wall_time_s: report.wall_time.as_secs_f64(),
+        tracked_probe: None,
+        contact: ContactRecord {
+            force: report.contact.force.into(),
+            obstacle_forces: report
+                .contact
+                .obstacle_forces
+                .iter()
+                .map(|&f| f.into())
+                .collect(),
+            active_vertices: report.contact.active_vertices,
+            max_penetration: report.contact.max_penetration,
+            iterations: report.contact_iterations,
+        },
+    }
+}

@@ -1,0 +1,126 @@
+//! `[mesh]`: where the mesh comes from (a generator with its parameters, or a file).
+
+use super::common::one;
+use super::common::Vector;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// Where the mesh comes from.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "generator", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MeshSpec {
+    /// A box `[min, max]` with `res * cells` hexes per axis, Kuhn-split into 6 tets each.
+    Box {
+        /// Lower corner.
+        min: Vector,
+        /// Upper corner.
+        max: Vector,
+        /// Resolution multiplier.
+        res: usize,
+        /// Cells per axis per unit of `res` (default `[1, 1, 1]`).
+        #[serde(default = "ones")]
+        cells: [usize; 3],
+        /// `res` must be a multiple of this (so that load patches fall on grid lines).
+        #[serde(default = "one")]
+        res_multiple_of: usize,
+    },
+    /// A solid cylinder about the z axis from `z = 0` to `height`.
+    Cylinder {
+        /// Radius.
+        radius: f64,
+        /// Height.
+        height: f64,
+        /// Resolution: cells across the radius.
+        res: usize,
+    },
+    /// A puck (short cylinder with at least `res` layers).
+    Puck {
+        /// Radius.
+        radius: f64,
+        /// Height.
+        height: f64,
+        /// Resolution: cells across the radius (and at least this many layers).
+        res: usize,
+    },
+    /// A thick-walled tube about the z axis from `z = 0` to `height`.
+    Tube {
+        /// Inner radius.
+        inner_radius: f64,
+        /// Outer radius.
+        outer_radius: f64,
+        /// Height.
+        height: f64,
+        /// Resolution: cells across the wall.
+        res: usize,
+    },
+    /// A ball centred at `center`.
+    Ball {
+        /// Radius.
+        radius: f64,
+        /// Resolution: cells across the radius.
+        res: usize,
+        /// Centre (default the origin).
+        #[serde(default)]
+        center: Vector,
+    },
+    /// The spine arm of Francu et al. 2021: a 0.25 x 0.03 x 0.03 m bar along x with five
+    /// square through-holes (`isochor_mesh::generate::spine_arm`, `1260 res^3` tets).
+    Spine {
+        /// Resolution: cells per centimetre.
+        res: usize,
+    },
+    /// The "cushion" of Francu et al. 2021, Fig. 6 (shape ours): a 40 x 40 x 13 mm pad with a
+    /// closed 30 x 30 x 4 mm chamber (`isochor_mesh::generate::cushion`, `768 res^3` tets),
+    /// groups `base`, `chamber`, `top`.
+    Cushion {
+        /// Resolution: cells across the thinnest wall.
+        res: usize,
+    },
+    /// The "bubble" of Francu et al. 2021, Fig. 6 (shape ours): a 40 x 40 x 15 mm block with a
+    /// closed 30 x 30 x 6 mm chamber under a 3 mm membrane (`isochor_mesh::generate::bubble`,
+    /// `552 res^3` tets), groups `base`, `chamber`, `membrane`.
+    Bubble {
+        /// Resolution: cells across the membrane.
+        res: usize,
+    },
+    /// The "finger" of Francu et al. 2021, Fig. 6 (shape ours): a 64 x 10 x 16 mm PneuNet-style
+    /// bender with five chambers joined by a channel above a strain-limiting base
+    /// (`isochor_mesh::generate::finger`, `1494 res^3` tets), groups `base`, `chamber`, `tip`.
+    Finger {
+        /// Resolution: cells across a chamber wall.
+        res: usize,
+    },
+    /// A torso on the tops of two legs (Sheen et al. 2021, Figs. 1 and 4; shape ours): 0.34 m
+    /// wide at the hips, 0.45 m tall, the waist at z = 0.34 m, rounded sections
+    /// (`isochor_mesh::generate::torso`, `2016 res^3` tets), groups `legs` (the legs' cut
+    /// faces, z = 0) and `top` (the cut at the chest).
+    Torso {
+        /// Resolution: cells about 4 cm wide at 1 (8 res across the hips), 2 cm high at the
+        /// waist.
+        res: usize,
+    },
+    /// A creature-like body standing in for the armadillo of Sheen et al. 2021, sec. 8.7
+    /// (shape ours): a 160 x 80 x 50 mm torso on four legs, a thin neck and a head, 260 mm
+    /// long (`isochor_mesh::generate::creature`, `942 res^3` tets), group `feet`.
+    Creature {
+        /// Resolution: cells across the neck.
+        res: usize,
+    },
+    /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
+    Explicit {
+        /// Vertex positions.
+        positions: Vec<Vector>,
+        /// Tets, as four vertex indices each.
+        tets: Vec<[usize; 4]>,
+    },
+    /// A mesh file: Gmsh `.msh`, TetGen `.node`/`.ele` (either name), or `.vtu`. A relative
+    /// path is resolved against the scene file's folder (or the working directory).
+    File {
+        /// The file.
+        path: PathBuf,
+    },
+}
+
+fn ones() -> [usize; 3] {
+    [1, 1, 1]
+}

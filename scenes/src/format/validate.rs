@@ -1,0 +1,488 @@
+//! Every check of a scene before a run, in one place: every number finite, the cross-key
+//! rules serde cannot express (references to selections, ranges, choices), the `[paper]`
+//! section, the bounds on steps ([`super::limits`]), and, once the problem is built, supports
+//! that hold a quasi-static body and obstacles clear of the body at the start.
+
+use super::limits;
+use super::mesh::MeshSpec;
+use super::names::{ZonalEnergyName, ZoneKind};
+use super::obstacles::ObstacleSpec;
+use super::overrides::check_key_syntax;
+use super::paper::PaperSpec;
+use super::probes::ProbeSpec;
+use super::scene::Scene;
+use super::stepping::{SteppingSpec, VOLUME_PROJECTIONS};
+use crate::error::SceneError;
+use isochor_solvers::{Method, Problem};
+use toml::Value;
+
+/// Refuses NaN anywhere in a scene's TOML tree, and infinities except where a key accepts
+/// one (`radial.max`), naming the key (`loads.gravity[1]`).
+pub fn finite_numbers(tree: &Value, origin: &str) -> Result<(), SceneError> {
+    let mut path = String::new();
+    walk(tree, &mut path).map_err(|(key, message)| SceneError::Invalid {
+        origin: origin.to_string(),
+        key,
+        message,
+    })
+}
+
+fn walk(value: &Value, path: &mut String) -> Result<(), (String, String)> {
+    match value {
+        Value::Float(x) if x.is_nan() => Err((path.clone(), "NaN is not a number".into())),
+        Value::Float(x) if x.is_infinite() && !(*x > 0.0 && path.ends_with("radial.max")) => {
+            Err((path.clone(), format!("{x} is not a finite number")))
+        }
+        Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .try_for_each(|(i, item)| enter(path, &format!("[{i}]"), item)),
+        Value::Table(table) => table.iter().try_for_each(|(key, item)| {
+            let dot = if path.is_empty() { "" } else { "." };
+            enter(path, &format!("{dot}{key}"), item)
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Walks `item` with `segment` appended to `path`.
+fn enter(path: &mut String, segment: &str, item: &Value) -> Result<(), (String, String)> {
+    let len = path.len();
+    path.push_str(segment);
+    let result = walk(item, path);
+    path.truncate(len);
+    result
+}
+
+/// Checks the cross-key rules serde cannot: references to selections, ranges, choices, the
+/// `[paper]` section and the bounds on steps.
+pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
+    let bad = |key: &str, message: String| SceneError::Invalid {
+        origin: origin.to_string(),
+        key: key.to_string(),
+        message,
+    };
+    let names = || {
+        scene
+            .selections
+            .keys()
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let check_selection = |key: String, name: &str| {
+        if scene.selections.contains_key(name) {
+            Ok(())
+        } else {
+            Err(bad(
+                &key,
+                format!("unknown selection '{name}' (defined: {})", names()),
+            ))
+        }
+    };
+    if let (Some(_), Some(_)) = (scene.material.young, scene.material.mu) {
+        return Err(bad("material", "give either young or mu, not both".into()));
+    }
+    for (i, r) in scene.regions.iter().enumerate() {
+        check_selection(format!("regions.{i}.selection"), &r.selection)?;
+    }
+    for (name, s) in &scene.selections {
+        let key = format!("selections.{name}");
+        let has_region = s.aabb.is_some()
+            || s.plane.is_some()
+            || s.half_space.is_some()
+            || s.radial.is_some()
+            || s.sphere.is_some()
+            || s.vertices.is_some()
+            || s.physical.is_some();
+        if !(has_region || s.all || s.surface) {
+            return Err(bad(
+                &key,
+                "a selection needs at least one of box, plane, half_space, radial, sphere, vertices, physical, surface, all".into(),
+            ));
+        }
+        if let Some(t) = s.tolerance {
+            if !(t.is_finite() && t >= 0.0) {
+                return Err(bad(
+                    &format!("{key}.tolerance"),
+                    format!("{t} must be finite and >= 0"),
+                ));
+            }
+        }
+    }
+    for (i, d) in scene.dirichlet.iter().enumerate() {
+        check_selection(format!("dirichlet.{i}.selection"), &d.selection)?;
+        if d.axes.is_empty() || !d.axes.chars().all(|c| matches!(c, 'x' | 'y' | 'z')) {
+            return Err(bad(
+                &format!("dirichlet.{i}.axes"),
+                format!(
+                    "'{}' must be letters among x, y, z (e.g. \"xyz\", \"z\")",
+                    d.axes
+                ),
+            ));
+        }
+    }
+    for (i, t) in scene.loads.traction.iter().enumerate() {
+        check_selection(format!("loads.traction.{i}.selection"), &t.selection)?;
+    }
+    for (i, p) in scene.loads.pressure.iter().enumerate() {
+        check_selection(format!("loads.pressure.{i}.selection"), &p.selection)?;
+    }
+    if let Some(z) = &scene.zones {
+        match z.kind {
+            ZoneKind::KRing if z.k.is_none_or(|k| k == 0) => {
+                return Err(bad("zones.k", "k-ring zones need k >= 1".into()))
+            }
+            ZoneKind::Painted if z.paint.is_empty() => {
+                return Err(bad(
+                    "zones.paint",
+                    "painted zones need a list of surface selections, one per zone".into(),
+                ))
+            }
+            ZoneKind::None
+                if scene.material.zonal_penalty == Some(0.0)
+                    && scene.material.zonal_energy != Some(ZonalEnergyName::Standard) =>
+            {
+                return Err(bad(
+                    "material.zonal_penalty",
+                    "with zones.kind = \"none\" and zonal_penalty = 0 nothing resists a change of volume: give zonal_penalty > 0 or a zone".into(),
+                ))
+            }
+            _ => {}
+        }
+        for (i, name) in z.paint.iter().enumerate() {
+            check_selection(format!("zones.paint.{i}"), name)?;
+        }
+    }
+    for (name, p) in &scene.probes {
+        let key = format!("probes.{name}");
+        match p {
+            ProbeSpec::Displacement {
+                point, selection, ..
+            } => {
+                if point.is_some() == selection.is_some() {
+                    return Err(bad(
+                        &key,
+                        "a displacement probe needs exactly one of point and selection".into(),
+                    ));
+                }
+                if let Some(s) = selection {
+                    check_selection(format!("{key}.selection"), s)?;
+                }
+            }
+            ProbeSpec::VolumeRatio { selection: Some(s) }
+            | ProbeSpec::Position {
+                selection: Some(s), ..
+            } => check_selection(format!("{key}.selection"), s)?,
+            ProbeSpec::RadiusIncrease { selection, .. }
+            | ProbeSpec::ChamberVolumeRatio { selection } => {
+                check_selection(format!("{key}.selection"), selection)?
+            }
+            ProbeSpec::MaxContactForce { obstacle: Some(k) } if *k >= scene.obstacles.len() => {
+                return Err(bad(
+                    &format!("{key}.obstacle"),
+                    format!(
+                        "no obstacle {k}: the scene has {} (numbered from 0)",
+                        scene.obstacles.len()
+                    ),
+                ))
+            }
+            _ => {}
+        }
+    }
+    match scene.stepping {
+        SteppingSpec::QuasiStatic { steps: 0, .. } => {
+            return Err(bad("stepping.steps", "at least one step is needed".into()))
+        }
+        SteppingSpec::QuasiStatic {
+            ref increments,
+            first_increment,
+            min_increment,
+            ..
+        } => {
+            if let Some(other) = increments
+                .as_deref()
+                .filter(|i| !["adaptive", "fixed"].contains(i))
+            {
+                return Err(bad(
+                    "stepping.increments",
+                    format!("unknown value '{other}' (valid: adaptive, fixed)"),
+                ));
+            }
+            let first = first_increment.unwrap_or(1.0);
+            if !(first > 0.0 && first <= 1.0) {
+                return Err(bad(
+                    "stepping.first_increment",
+                    format!("{first} must lie in (0, 1]"),
+                ));
+            }
+            let min = min_increment.unwrap_or(1e-4);
+            if !(min > 0.0 && min <= first) {
+                return Err(bad(
+                    "stepping.min_increment",
+                    format!("{min} must lie in (0, first_increment = {first}]"),
+                ));
+            }
+        }
+        SteppingSpec::Dynamic {
+            dt,
+            frames,
+            ref volume_projection,
+            volume_recovery,
+        } => {
+            if let Some(other) = volume_projection
+                .as_deref()
+                .filter(|p| !VOLUME_PROJECTIONS.contains(p))
+            {
+                return Err(bad(
+                    "stepping.volume_projection",
+                    format!(
+                        "unknown value '{other}' (valid: {})",
+                        VOLUME_PROJECTIONS.join(", ")
+                    ),
+                ));
+            }
+            if let Some(r) = volume_recovery {
+                if volume_projection.as_deref() != Some("one-ring") {
+                    return Err(bad(
+                        "stepping.volume_recovery",
+                        "applies to volume_projection = \"one-ring\" only".into(),
+                    ));
+                }
+                if !(r > 0.0 && r <= 1.0) {
+                    return Err(bad(
+                        "stepping.volume_recovery",
+                        format!("{r} must lie in (0, 1]"),
+                    ));
+                }
+            }
+            if frames == 0 {
+                return Err(bad(
+                    "stepping.frames",
+                    "at least one frame is needed".into(),
+                ));
+            }
+            if !(dt.is_finite() && dt > 0.0) {
+                return Err(bad("stepping.dt", format!("{dt} must be finite and > 0")));
+            }
+        }
+    }
+    if scene.solver.accept_unconverged == Some(true) && !scene.is_dynamic() {
+        return Err(bad(
+            "solver.accept_unconverged",
+            "applies to dynamic stepping only: a quasi-static step must be an equilibrium".into(),
+        ));
+    }
+    if let Some(name) = scene
+        .output
+        .potential_against
+        .as_ref()
+        .filter(|n| !scene.probes.contains_key(*n))
+    {
+        return Err(bad(
+            "output.potential_against",
+            format!(
+                "no probe named '{name}' (probes: {})",
+                scene.probes.keys().cloned().collect::<Vec<_>>().join(", ")
+            ),
+        ));
+    }
+    if scene.output.every == 0 {
+        return Err(bad("output.every", "must be at least 1".into()));
+    }
+    match &scene.mesh {
+        MeshSpec::Box {
+            res,
+            res_multiple_of,
+            cells,
+            ..
+        } => {
+            if *res == 0 || *res_multiple_of == 0 || res % res_multiple_of != 0 {
+                return Err(bad(
+                    "mesh.res",
+                    format!("{res} must be a positive multiple of {res_multiple_of}"),
+                ));
+            }
+            if cells.contains(&0) {
+                return Err(bad("mesh.cells", "every entry must be at least 1".into()));
+            }
+        }
+        MeshSpec::Cylinder { res, .. }
+        | MeshSpec::Puck { res, .. }
+        | MeshSpec::Tube { res, .. }
+        | MeshSpec::Ball { res, .. }
+            if *res == 0 =>
+        {
+            return Err(bad("mesh.res", "must be at least 1".into()))
+        }
+        _ => {}
+    }
+    for (variant, sets) in &scene.variants {
+        for key in sets.keys() {
+            check_key_syntax(key).map_err(|m| bad(&format!("variants.{variant}.{key}"), m))?;
+        }
+    }
+    if let Some(paper) = &scene.paper {
+        self::paper(paper, scene).map_err(|(key, m)| bad(&key, m))?;
+    }
+    limits::check_steps(scene, origin)
+}
+
+/// Checks the section against its scene: the sweep key's syntax, distinct values, probes
+/// the scene defines, method or variant names, and one value per swept value. The error
+/// is the key at fault and what is wrong.
+fn paper(spec: &PaperSpec, scene: &Scene) -> Result<(), (String, String)> {
+    check_key_syntax(&spec.sweep).map_err(|m| ("paper.sweep".into(), m))?;
+    if spec.values.is_empty() {
+        return Err(("paper.values".into(), "give at least one value".into()));
+    }
+    for (i, v) in spec.values.iter().enumerate() {
+        if spec.values[..i].contains(v) {
+            return Err((format!("paper.values.{i}"), format!("{v} is given twice")));
+        }
+    }
+    if spec.probes.is_empty() {
+        return Err((
+            "paper.probes".into(),
+            "give the values of at least one probe".into(),
+        ));
+    }
+    for (probe, labels) in &spec.probes {
+        let key = format!("paper.probes.{probe}");
+        if !scene.probes.contains_key(probe) {
+            let defined: Vec<&str> = scene.probes.keys().map(String::as_str).collect();
+            return Err((
+                key,
+                format!("unknown probe '{probe}' (defined: {})", defined.join(", ")),
+            ));
+        }
+        for (label, values) in labels {
+            let key = format!("{key}.{label}");
+            if label.parse::<Method>().is_err() && !scene.variants.contains_key(label) {
+                let variants: Vec<&str> = scene.variants.keys().map(String::as_str).collect();
+                return Err((
+                    key,
+                    format!(
+                        "'{label}' is neither a method ({}) nor a variant of the scene ({})",
+                        Method::ALL.map(Method::name).join(", "),
+                        variants.join(", ")
+                    ),
+                ));
+            }
+            if values.len() != spec.values.len() {
+                return Err((
+                    key,
+                    format!(
+                        "{} values, but paper.values has {}",
+                        values.len(),
+                        spec.values.len()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The checks that need the built problem: supports that hold a quasi-static body, and
+/// obstacles clear of the body at the start (`contact_tolerance` relative to the mesh's
+/// bounding-box diagonal).
+pub fn problem(scene: &Scene, problem: &Problem, contact_tolerance: f64) -> Result<(), SceneError> {
+    supports(scene, problem)?;
+    obstacles_clear(scene, problem, contact_tolerance)
+}
+
+/// Refuses quasi-static stepping when the Dirichlet conditions leave a rigid motion free:
+/// the equilibrium is singular along it.
+fn supports(scene: &Scene, problem: &Problem) -> Result<(), SceneError> {
+    if scene.is_dynamic() {
+        return Ok(());
+    }
+    let free = problem.unremoved_rigid_modes();
+    if free == 0 {
+        return Ok(());
+    }
+    Err(SceneError::Invalid {
+        origin: format!("scene {}", scene.name),
+        key: "dirichlet".into(),
+        message: format!(
+            "quasi-static stepping needs supports that hold the body, but the Dirichlet \
+             conditions leave {free} of its 6 rigid motions (3 translations, 3 rotations) free, \
+             and the equilibrium is singular along them: hold more of the body (e.g. clamp a \
+             face, or three nodes not on one line in every axis), add an obstacle, or use \
+             dynamic stepping"
+        ),
+    })
+}
+
+/// Refuses an obstacle that holds nodes of the body at the start (signed distance below
+/// `-tolerance` at the rest positions, `tolerance` relative to the mesh's bounding-box
+/// diagonal as the contact tolerance is): contact would push them out in the first step, or
+/// ignore an obstacle that lies inside the body.
+fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(), SceneError> {
+    let nodes = problem.mesh.nodes();
+    let (lo, hi) = nodes
+        .iter()
+        .fold((nodes[0], nodes[0]), |(lo, hi), x| (lo.inf(x), hi.sup(x)));
+    let depth = tolerance * (hi - lo).norm();
+    for (i, (obstacle, spec)) in problem.obstacles.iter().zip(&scene.obstacles).enumerate() {
+        let (inside, deepest) = nodes
+            .iter()
+            .map(|x| obstacle.distance(x, 0.0).0)
+            .filter(|&d| d < -depth)
+            .fold((0usize, 0.0f64), |(n, deepest), d| (n + 1, deepest.min(d)));
+        if inside > 0 {
+            let kind = match spec {
+                ObstacleSpec::HalfSpace { .. } => "half-space",
+                ObstacleSpec::Sphere { .. } => "sphere",
+                ObstacleSpec::Cylinder { .. } => "cylinder",
+                ObstacleSpec::Ring { .. } => "ring",
+            };
+            return Err(SceneError::Invalid {
+                origin: format!("scene {}", scene.name),
+                key: format!("obstacles[{i}]"),
+                message: format!(
+                    "the {kind} obstacle overlaps the body at the start: {inside} of its {} \
+                     nodes lie inside it (the deepest {:.3e} inside); place it clear of the \
+                     rest shape and move it in with `translate`",
+                    nodes.len(),
+                    -deepest
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(text: &str) -> Result<(), (String, String)> {
+        walk(&toml::from_str(text).unwrap(), &mut String::new())
+    }
+
+    #[test]
+    fn non_finite_numbers_are_named_by_key() {
+        assert_eq!(
+            check("[loads]\ngravity = [0, nan, 0]"),
+            Err(("loads.gravity[1]".into(), "NaN is not a number".into()))
+        );
+        assert_eq!(
+            check("[[obstacles]]\ncenter = [0, 0, 0]\n[[obstacles]]\nradius = -inf"),
+            Err((
+                "obstacles[1].radius".into(),
+                "-inf is not a finite number".into()
+            ))
+        );
+        assert_eq!(
+            check("[mesh]\npositions = [[0, 0, 0], [1, inf, 0]]"),
+            Err((
+                "mesh.positions[1][1]".into(),
+                "inf is not a finite number".into()
+            ))
+        );
+        assert!(check("[selections.a.radial]\nmax = inf\nmin = 0.5").is_ok());
+        assert!(check("[selections.a.radial]\nmin = inf").is_err());
+    }
+}

@@ -1,0 +1,82 @@
+//! A scene resolved once: the mesh built (with its groups), every named selection resolved to
+//! node, vertex, face and tet sets, the zones and the regions, in one pass, into one
+//! [`Built`] value that the problem, the probes and the outputs all read. Nothing after this
+//! layer re-resolves a selection or rebuilds a mesh.
+//!
+//! Inside this layer: `mesh`, then `selections`, then `zones`, `material` and `problem`, then
+//! this module on top.
+
+pub mod material;
+pub mod mesh;
+pub mod problem;
+pub mod selections;
+pub mod zones;
+
+pub use material::build_material;
+pub use mesh::{build_mesh, mesh_with_groups, read_mesh_file, SceneMesh};
+pub use selections::Selections;
+
+use crate::error::SceneError;
+use crate::format::{limits, validate, Scene};
+use isochor_mesh::Zones;
+use isochor_solvers::{Method, Problem, Settings, Stepping};
+
+/// A scene made concrete, once: everything a run needs.
+#[derive(Debug, Clone)]
+pub struct Built {
+    /// The problem (mesh, method, material, regions, zones, conditions, loads, obstacles).
+    pub problem: Problem,
+    /// Quasi-static steps or implicit Euler frames.
+    pub stepping: Stepping,
+    /// Newton limits and tolerances.
+    pub settings: Settings,
+    /// Every named selection on the mesh.
+    pub selections: Selections,
+    /// The scene's zones, if the method constrains them or a probe measures them.
+    pub zones: Option<Zones>,
+}
+
+/// Resolves a scene: checks that its estimated memory fits ([`limits`]), builds the mesh and
+/// its groups, resolves every selection, the regions and the zones, and converts the rest to
+/// the solver's types; then refuses a quasi-static scene whose supports leave a rigid motion
+/// free and an obstacle that overlaps the body at the start ([`validate::problem`]).
+pub fn build(scene: &Scene) -> Result<Built, SceneError> {
+    limits::check_memory(scene, &format!("scene {}", scene.name))?;
+    let wants_groups = scene.selections.values().any(|s| s.physical.is_some());
+    let mesh = mesh_with_groups(&scene.mesh, scene.element(), wants_groups)?;
+    let material = build_material(&scene.material)?;
+    let selections = Selections::new(&mesh, &scene.selections)?;
+    let regions = material::regions(scene, &selections)?;
+    let dirichlet = problem::dirichlet(scene, &selections)?;
+    let loads = problem::loads(scene, &selections)?;
+    let obstacles = problem::obstacles(scene)?;
+    let method = scene.method();
+    let zones = if zones::needed(scene) {
+        Some(zones::zones(scene, mesh.mesh.corners(), &selections)?)
+    } else {
+        None
+    };
+    let settings = Settings {
+        volume_projection: problem::volume_projection(&scene.stepping),
+        ..problem::settings(&scene.solver)
+    };
+    let stepping = problem::stepping(&scene.stepping);
+    let problem = Problem {
+        mesh: mesh.mesh,
+        method,
+        material,
+        regions,
+        zones: zones.clone().filter(|_| method == Method::Zonal),
+        dirichlet,
+        loads,
+        obstacles,
+    };
+    validate::problem(scene, &problem, settings.contact_tolerance)?;
+    Ok(Built {
+        problem,
+        stepping,
+        settings,
+        selections,
+        zones,
+    })
+}
