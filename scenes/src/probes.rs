@@ -17,7 +17,7 @@ pub struct ProbeInput<'a> {
     pub mesh: &'a ElementMesh,
     /// The scene's selections on it.
     pub selections: &'a Selections,
-    /// The scene's zones, if it has a zone probe (see [`crate::resolve::Built::zones`]).
+    /// The scene's zones, if it has a zone probe (see [`crate::resolve::ResolvedScene::zones`]).
     pub zones: Option<&'a Zones>,
     /// Positions of the state.
     pub positions: &'a [Vec3],

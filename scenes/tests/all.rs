@@ -8,6 +8,7 @@ mod builtin;
 mod cli;
 mod compare;
 mod contact;
+mod frames;
 mod overrides;
 mod physical;
 mod pneunet;

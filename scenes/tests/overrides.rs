@@ -6,7 +6,7 @@
 use isochor_mesh::{Vec3, Zones};
 use isochor_scenes::format::overrides::FLAT_KEYS;
 use isochor_scenes::format::{PreviewField, VtuEncodingName};
-use isochor_scenes::resolve::{build, Built};
+use isochor_scenes::resolve::{build, ResolvedScene};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
 use isochor_solvers::{
     Epidermis, Kappa, LinearSolver, Load, MaterialModel, Method, Simulation, StepControl, Stepping,
@@ -20,7 +20,7 @@ struct Case {
     scene: &'static str,
     setup: &'static [&'static str],
     value: &'static str,
-    reached: fn(&Scene, &Built) -> bool,
+    reached: fn(&Scene, &ResolvedScene) -> bool,
     bad: &'static str,
 }
 
@@ -29,18 +29,18 @@ const STATIC: &str = "cantilever";
 /// A coarse falling cube (48 tets, `zonal`, implicit Euler).
 const DYNAMIC: &str = "dynamic-cube";
 
-fn iterative(s: &Built) -> Option<(f64, usize)> {
+fn iterative(s: &ResolvedScene) -> Option<(f64, usize)> {
     match s.settings.linear {
         LinearSolver::Iterative(i) => Some((i.tolerance, i.max_iterations)),
         LinearSolver::Direct | LinearSolver::Auto(_) => None,
     }
 }
 
-fn k_ring(b: &Built, k: usize) -> bool {
+fn k_ring(b: &ResolvedScene, k: usize) -> bool {
     b.problem.zones == Some(Zones::k_ring_cover(b.problem.mesh.corners(), k).unwrap())
 }
 
-fn epidermis(b: &Built) -> Option<Epidermis> {
+fn epidermis(b: &ResolvedScene) -> Option<Epidermis> {
     b.problem.material.epidermis
 }
 
@@ -497,7 +497,11 @@ const CASES: &[Case] = &[
 /// Loads `scene` at `res = 1` with `setup` and then `extra`, builds it and creates the
 /// simulation (which checks the solver settings); the scene and what was built, or the
 /// first error.
-fn load(scene: &str, setup: &[&str], extra: Option<String>) -> Result<(Scene, Built), String> {
+fn load(
+    scene: &str,
+    setup: &[&str],
+    extra: Option<String>,
+) -> Result<(Scene, ResolvedScene), String> {
     let overrides = ["res=1"]
         .iter()
         .chain(setup)

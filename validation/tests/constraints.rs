@@ -3,7 +3,7 @@
 //! 2021 as numbers; zonal volumes; compliance limits.
 
 use isochor_constraints::{
-    Compliance, ConstraintSet, PerElementConstraints, Measure, NodalCompliance, NodalConstraints,
+    Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints, PerElementConstraints,
     ZonalConstraints,
 };
 use isochor_mesh::{generate::box_grid, TetMesh, Vec3, Zones};

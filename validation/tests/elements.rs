@@ -24,8 +24,8 @@
 //!   (any rule), degree 3 on curved ones (the degree-5 rule).
 
 use isochor_constraints::{
-    exact_rule, Compliance, ConstraintSet, PerElementConstraints, Measure, NodalCompliance,
-    NodalConstraints, ZonalConstraints,
+    exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+    PerElementConstraints, ZonalConstraints,
 };
 use isochor_energies::kernel::{self, RestPoints};
 use isochor_energies::triangle::{self, area_element, RestFacePoints};

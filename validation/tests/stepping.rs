@@ -5,12 +5,13 @@
 use crate::common;
 
 use common::{assert_converged, probe, run};
-use isochor_scenes::{load_scene, resolve as problem, Override};
+use isochor_scenes::resolve::{self, ResolvedScene};
+use isochor_scenes::{load_scene, Override};
 use isochor_solvers::{Checkpoint, Method, Simulation, State};
 
-fn built(scene: &str, sets: &[&str]) -> problem::Built {
+fn built(scene: &str, sets: &[&str]) -> ResolvedScene {
     let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
-    problem::build(&load_scene(scene, None, &overrides).unwrap()).unwrap()
+    resolve::build(&load_scene(scene, None, &overrides).unwrap()).unwrap()
 }
 
 /// The cantilever at its default settings takes the full load in one step with every method,
@@ -153,7 +154,7 @@ fn failed_time_steps_are_retried_in_substeps_keeping_the_frames() {
 
 /// Runs `built` to the end, taking a checkpoint after accepted step `at`; returns the final
 /// state and the checkpoint.
-fn run_with_checkpoint(built: problem::Built, at: usize) -> (State, Checkpoint) {
+fn run_with_checkpoint(built: ResolvedScene, at: usize) -> (State, Checkpoint) {
     let mut sim = Simulation::new(built.problem, built.settings).unwrap();
     let mut taken = None;
     let summary = sim

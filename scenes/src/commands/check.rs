@@ -5,7 +5,7 @@
 
 use crate::error::SceneError;
 use crate::format::Scene;
-use crate::resolve::{self, Built};
+use crate::resolve::{self, ResolvedScene};
 use isochor_mesh::io::{write_vtu_elements, Field, VtuEncoding};
 use isochor_solvers::Simulation;
 use std::fmt::Write as _;
@@ -62,7 +62,7 @@ pub struct CheckReport {
 /// per selection (1 on its vertices) and the cell fields `region` and `sel_NAME` (1 on the
 /// selection's tets).
 pub fn check_scene(scene: &Scene, vtu: Option<&Path>) -> Result<CheckReport, SceneError> {
-    let Built {
+    let ResolvedScene {
         problem,
         settings,
         selections,

@@ -36,10 +36,10 @@ const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
 /// Memory of the process before the mesh: code, tables, output buffers.
 const BASE_BYTES: f64 = 16.0 * 1024.0 * 1024.0;
 
-/// Bytes per unknown that do not grow with the mesh: mesh, element data, assembled matrix,
-/// vectors. With [`FILL_BYTES_PER_UNKNOWN`], least squares on the peaks of the README's scale
-/// study (`standard`, 8k to 182k unknowns, default ordering; `mixed-p1` agrees within 10%
-/// with its density).
+/// Bytes per unknown that do not grow with the mesh: mesh, element data, assembled matrix, vectors.
+/// With [`FILL_BYTES_PER_UNKNOWN`], least squares on the peaks of the scale study of
+/// docs/performance.md (`standard`, 8k to 182k unknowns, default ordering; `mixed-p1` agrees within
+/// 10% with its density).
 const BYTES_PER_UNKNOWN: f64 = 5.2e3;
 
 /// Bytes per unknown of the sparse factor, times `n^(1/3)`: nested-dissection fill of a 3D

@@ -1,7 +1,7 @@
-//! A scene resolved once: the mesh built (with its groups), every named selection resolved to
-//! node, vertex, face and tet sets, the zones and the regions, in one pass, into one
-//! [`Built`] value that the problem, the probes and the outputs all read. Nothing after this
-//! layer re-resolves a selection or rebuilds a mesh.
+//! A scene resolved once: the mesh built (with its groups), every named selection resolved to node,
+//! vertex, face and tet sets, the zones and the regions, in one pass, into one [`ResolvedScene`]
+//! value that the problem, the probes and the outputs all read. Nothing after this layer
+//! re-resolves a selection or rebuilds a mesh.
 //!
 //! Inside this layer: `mesh`, then `selections`, then `zones`, `material` and `problem`, then
 //! this module on top.
@@ -23,7 +23,7 @@ use isochor_solvers::{Method, Problem, Settings, Stepping};
 
 /// A scene made concrete, once: everything a run needs.
 #[derive(Debug, Clone)]
-pub struct Built {
+pub struct ResolvedScene {
     /// The problem (mesh, method, material, regions, zones, conditions, loads, obstacles).
     pub problem: Problem,
     /// Quasi-static steps or implicit Euler frames.
@@ -40,7 +40,7 @@ pub struct Built {
 /// its groups, resolves every selection, the regions and the zones, and converts the rest to
 /// the solver's types; then refuses a quasi-static scene whose supports leave a rigid motion
 /// free and an obstacle that overlaps the body at the start ([`validate::problem`]).
-pub fn build(scene: &Scene) -> Result<Built, SceneError> {
+pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
     limits::check_memory(scene, &format!("scene {}", scene.name))?;
     let wants_groups = scene.selections.values().any(|s| s.physical.is_some());
     let mesh = mesh_with_groups(&scene.mesh, scene.element(), wants_groups)?;
@@ -72,7 +72,7 @@ pub fn build(scene: &Scene) -> Result<Built, SceneError> {
         obstacles,
     };
     validate::problem(scene, &problem, settings.contact_tolerance)?;
-    Ok(Built {
+    Ok(ResolvedScene {
         problem,
         stepping,
         settings,

@@ -11,7 +11,7 @@ use crate::format::{PointsName, Scene};
 use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::RunResult;
-use crate::resolve::{self, Built};
+use crate::resolve::{self, ResolvedScene};
 use isochor_solvers::Simulation;
 use std::path::PathBuf;
 
@@ -22,7 +22,7 @@ pub(super) fn execute(
     out: Option<OutputDir>,
     resume: Option<RunCheckpoint>,
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
-    let Built {
+    let ResolvedScene {
         problem,
         stepping,
         settings,
