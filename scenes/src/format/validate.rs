@@ -54,38 +54,71 @@ fn enter(path: &mut String, segment: &str, item: &Value) -> Result<(), (String, 
     result
 }
 
-/// Checks the cross-key rules serde cannot: references to selections, ranges, choices, the
-/// `[paper]` section and the bounds on steps.
+/// The key at fault and what is wrong with it.
+type Fault = (String, String);
+
+/// The check of one section of a scene.
+type SectionCheck = fn(&Scene) -> Result<(), Fault>;
+
+/// Checks the cross-key rules of `scene` (read from `origin`) that serde cannot express, one
+/// section at a time, then the bounds on its steps.
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
-    let bad = |key: &str, message: String| SceneError::Invalid {
-        origin: origin.to_string(),
-        key: key.to_string(),
-        message,
-    };
-    let names = || {
-        scene
-            .selections
-            .keys()
-            .cloned()
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let check_selection = |key: String, name: &str| {
-        if scene.selections.contains_key(name) {
-            Ok(())
-        } else {
-            Err(bad(
-                &key,
-                format!("unknown selection '{name}' (defined: {})", names()),
-            ))
-        }
-    };
+    let sections: [SectionCheck; 9] = [
+        material_and_regions,
+        selections,
+        conditions,
+        zones,
+        probes,
+        stepping,
+        solver_and_output,
+        mesh,
+        variants_and_paper,
+    ];
+    for check in sections {
+        check(scene).map_err(|(key, message)| SceneError::Invalid {
+            origin: origin.to_string(),
+            key,
+            message,
+        })?;
+    }
+    limits::check_steps(scene, origin)
+}
+
+/// A fault at `key`.
+fn fault(key: impl Into<String>, message: impl Into<String>) -> Fault {
+    (key.into(), message.into())
+}
+
+/// Refuses a reference at `key` to a selection the scene does not define.
+fn selection_defined(scene: &Scene, key: String, name: &str) -> Result<(), Fault> {
+    if scene.selections.contains_key(name) {
+        return Ok(());
+    }
+    let names = scene
+        .selections
+        .keys()
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    Err(fault(
+        key,
+        format!("unknown selection '{name}' (defined: {names})"),
+    ))
+}
+
+/// `[material]` gives one stiffness; every `[[regions]]` entry names a selection.
+fn material_and_regions(scene: &Scene) -> Result<(), Fault> {
     if let (Some(_), Some(_)) = (scene.material.young, scene.material.mu) {
-        return Err(bad("material", "give either young or mu, not both".into()));
+        return Err(fault("material", "give either young or mu, not both"));
     }
     for (i, r) in scene.regions.iter().enumerate() {
-        check_selection(format!("regions.{i}.selection"), &r.selection)?;
+        selection_defined(scene, format!("regions.{i}.selection"), &r.selection)?;
     }
+    Ok(())
+}
+
+/// Every selection selects something, with a valid tolerance.
+fn selections(scene: &Scene) -> Result<(), Fault> {
     for (name, s) in &scene.selections {
         let key = format!("selections.{name}");
         let has_region = s.aabb.is_some()
@@ -96,25 +129,30 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
             || s.vertices.is_some()
             || s.physical.is_some();
         if !(has_region || s.all || s.surface) {
-            return Err(bad(
-                &key,
-                "a selection needs at least one of box, plane, half_space, radial, sphere, vertices, physical, surface, all".into(),
+            return Err(fault(
+                key,
+                "a selection needs at least one of box, plane, half_space, radial, sphere, vertices, physical, surface, all",
             ));
         }
         if let Some(t) = s.tolerance {
             if !(t.is_finite() && t >= 0.0) {
-                return Err(bad(
-                    &format!("{key}.tolerance"),
+                return Err(fault(
+                    format!("{key}.tolerance"),
                     format!("{t} must be finite and >= 0"),
                 ));
             }
         }
     }
+    Ok(())
+}
+
+/// Dirichlet conditions and loads name defined selections, and the conditions valid axes.
+fn conditions(scene: &Scene) -> Result<(), Fault> {
     for (i, d) in scene.dirichlet.iter().enumerate() {
-        check_selection(format!("dirichlet.{i}.selection"), &d.selection)?;
+        selection_defined(scene, format!("dirichlet.{i}.selection"), &d.selection)?;
         if d.axes.is_empty() || !d.axes.chars().all(|c| matches!(c, 'x' | 'y' | 'z')) {
-            return Err(bad(
-                &format!("dirichlet.{i}.axes"),
+            return Err(fault(
+                format!("dirichlet.{i}.axes"),
                 format!(
                     "'{}' must be letters among x, y, z (e.g. \"xyz\", \"z\")",
                     d.axes
@@ -123,37 +161,49 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
         }
     }
     for (i, t) in scene.loads.traction.iter().enumerate() {
-        check_selection(format!("loads.traction.{i}.selection"), &t.selection)?;
+        selection_defined(scene, format!("loads.traction.{i}.selection"), &t.selection)?;
     }
     for (i, p) in scene.loads.pressure.iter().enumerate() {
-        check_selection(format!("loads.pressure.{i}.selection"), &p.selection)?;
+        selection_defined(scene, format!("loads.pressure.{i}.selection"), &p.selection)?;
     }
-    if let Some(z) = &scene.zones {
-        match z.kind {
-            ZoneKind::KRing if z.k.is_none_or(|k| k == 0) => {
-                return Err(bad("zones.k", "k-ring zones need k >= 1".into()))
-            }
-            ZoneKind::Painted if z.paint.is_empty() => {
-                return Err(bad(
-                    "zones.paint",
-                    "painted zones need a list of surface selections, one per zone".into(),
-                ))
-            }
-            ZoneKind::None
-                if scene.material.zonal_penalty == Some(0.0)
-                    && scene.material.zonal_energy != Some(ZonalEnergyName::Standard) =>
-            {
-                return Err(bad(
-                    "material.zonal_penalty",
-                    "with zones.kind = \"none\" and zonal_penalty = 0 nothing resists a change of volume: give zonal_penalty > 0 or a zone".into(),
-                ))
-            }
-            _ => {}
+    Ok(())
+}
+
+/// `[zones]`: what each kind needs, and painted zones on defined selections.
+fn zones(scene: &Scene) -> Result<(), Fault> {
+    let Some(z) = &scene.zones else {
+        return Ok(());
+    };
+    match z.kind {
+        ZoneKind::KRing if z.k.is_none_or(|k| k == 0) => {
+            return Err(fault("zones.k", "k-ring zones need k >= 1"))
         }
-        for (i, name) in z.paint.iter().enumerate() {
-            check_selection(format!("zones.paint.{i}"), name)?;
+        ZoneKind::Painted if z.paint.is_empty() => {
+            return Err(fault(
+                "zones.paint",
+                "painted zones need a list of surface selections, one per zone",
+            ))
         }
+        ZoneKind::None
+            if scene.material.zonal_penalty == Some(0.0)
+                && scene.material.zonal_energy != Some(ZonalEnergyName::Standard) =>
+        {
+            return Err(fault(
+                "material.zonal_penalty",
+                "with zones.kind = \"none\" and zonal_penalty = 0 nothing resists a change of volume: give zonal_penalty > 0 or a zone",
+            ))
+        }
+        _ => {}
     }
+    for (i, name) in z.paint.iter().enumerate() {
+        selection_defined(scene, format!("zones.paint.{i}"), name)?;
+    }
+    Ok(())
+}
+
+/// Every probe names what it needs: one of a point and a selection, defined selections,
+/// an existing obstacle.
+fn probes(scene: &Scene) -> Result<(), Fault> {
     for (name, p) in &scene.probes {
         let key = format!("probes.{name}");
         match p {
@@ -161,26 +211,26 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
                 point, selection, ..
             } => {
                 if point.is_some() == selection.is_some() {
-                    return Err(bad(
-                        &key,
-                        "a displacement probe needs exactly one of point and selection".into(),
+                    return Err(fault(
+                        key,
+                        "a displacement probe needs exactly one of point and selection",
                     ));
                 }
                 if let Some(s) = selection {
-                    check_selection(format!("{key}.selection"), s)?;
+                    selection_defined(scene, format!("{key}.selection"), s)?;
                 }
             }
             ProbeSpec::VolumeRatio { selection: Some(s) }
             | ProbeSpec::Position {
                 selection: Some(s), ..
-            } => check_selection(format!("{key}.selection"), s)?,
+            } => selection_defined(scene, format!("{key}.selection"), s)?,
             ProbeSpec::RadiusIncrease { selection, .. }
             | ProbeSpec::ChamberVolumeRatio { selection } => {
-                check_selection(format!("{key}.selection"), selection)?
+                selection_defined(scene, format!("{key}.selection"), selection)?
             }
             ProbeSpec::MaxContactForce { obstacle: Some(k) } if *k >= scene.obstacles.len() => {
-                return Err(bad(
-                    &format!("{key}.obstacle"),
+                return Err(fault(
+                    format!("{key}.obstacle"),
                     format!(
                         "no obstacle {k}: the scene has {} (numbered from 0)",
                         scene.obstacles.len()
@@ -190,9 +240,15 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
             _ => {}
         }
     }
+    Ok(())
+}
+
+/// `[stepping]`: at least one step or frame, increments and time steps in range, the
+/// volume projection's choices.
+fn stepping(scene: &Scene) -> Result<(), Fault> {
     match scene.stepping {
         SteppingSpec::QuasiStatic { steps: 0, .. } => {
-            return Err(bad("stepping.steps", "at least one step is needed".into()))
+            Err(fault("stepping.steps", "at least one step is needed"))
         }
         SteppingSpec::QuasiStatic {
             ref increments,
@@ -204,25 +260,26 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
                 .as_deref()
                 .filter(|i| !["adaptive", "fixed"].contains(i))
             {
-                return Err(bad(
+                return Err(fault(
                     "stepping.increments",
                     format!("unknown value '{other}' (valid: adaptive, fixed)"),
                 ));
             }
             let first = first_increment.unwrap_or(1.0);
             if !(first > 0.0 && first <= 1.0) {
-                return Err(bad(
+                return Err(fault(
                     "stepping.first_increment",
                     format!("{first} must lie in (0, 1]"),
                 ));
             }
             let min = min_increment.unwrap_or(1e-4);
             if !(min > 0.0 && min <= first) {
-                return Err(bad(
+                return Err(fault(
                     "stepping.min_increment",
                     format!("{min} must lie in (0, first_increment = {first}]"),
                 ));
             }
+            Ok(())
         }
         SteppingSpec::Dynamic {
             dt,
@@ -234,7 +291,7 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
                 .as_deref()
                 .filter(|p| !VOLUME_PROJECTIONS.contains(p))
             {
-                return Err(bad(
+                return Err(fault(
                     "stepping.volume_projection",
                     format!(
                         "unknown value '{other}' (valid: {})",
@@ -244,33 +301,35 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
             }
             if let Some(r) = volume_recovery {
                 if volume_projection.as_deref() != Some("one-ring") {
-                    return Err(bad(
+                    return Err(fault(
                         "stepping.volume_recovery",
-                        "applies to volume_projection = \"one-ring\" only".into(),
+                        "applies to volume_projection = \"one-ring\" only",
                     ));
                 }
                 if !(r > 0.0 && r <= 1.0) {
-                    return Err(bad(
+                    return Err(fault(
                         "stepping.volume_recovery",
                         format!("{r} must lie in (0, 1]"),
                     ));
                 }
             }
             if frames == 0 {
-                return Err(bad(
-                    "stepping.frames",
-                    "at least one frame is needed".into(),
-                ));
+                return Err(fault("stepping.frames", "at least one frame is needed"));
             }
             if !(dt.is_finite() && dt > 0.0) {
-                return Err(bad("stepping.dt", format!("{dt} must be finite and > 0")));
+                return Err(fault("stepping.dt", format!("{dt} must be finite and > 0")));
             }
+            Ok(())
         }
     }
+}
+
+/// `[solver]` and `[output]` keys that depend on the rest of the scene.
+fn solver_and_output(scene: &Scene) -> Result<(), Fault> {
     if scene.solver.accept_unconverged == Some(true) && !scene.is_dynamic() {
-        return Err(bad(
+        return Err(fault(
             "solver.accept_unconverged",
-            "applies to dynamic stepping only: a quasi-static step must be an equilibrium".into(),
+            "applies to dynamic stepping only: a quasi-static step must be an equilibrium",
         ));
     }
     if let Some(name) = scene
@@ -279,7 +338,7 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
         .as_ref()
         .filter(|n| !scene.probes.contains_key(*n))
     {
-        return Err(bad(
+        return Err(fault(
             "output.potential_against",
             format!(
                 "no probe named '{name}' (probes: {})",
@@ -288,8 +347,13 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
         ));
     }
     if scene.output.every == 0 {
-        return Err(bad("output.every", "must be at least 1".into()));
+        return Err(fault("output.every", "must be at least 1"));
     }
+    Ok(())
+}
+
+/// `[mesh]`: resolutions and cell counts of the generators that have them.
+fn mesh(scene: &Scene) -> Result<(), Fault> {
     match &scene.mesh {
         MeshSpec::Box {
             res,
@@ -298,14 +362,15 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
             ..
         } => {
             if *res == 0 || *res_multiple_of == 0 || res % res_multiple_of != 0 {
-                return Err(bad(
+                return Err(fault(
                     "mesh.res",
                     format!("{res} must be a positive multiple of {res_multiple_of}"),
                 ));
             }
             if cells.contains(&0) {
-                return Err(bad("mesh.cells", "every entry must be at least 1".into()));
+                return Err(fault("mesh.cells", "every entry must be at least 1"));
             }
+            Ok(())
         }
         MeshSpec::Cylinder { res, .. }
         | MeshSpec::Puck { res, .. }
@@ -313,25 +378,29 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
         | MeshSpec::Ball { res, .. }
             if *res == 0 =>
         {
-            return Err(bad("mesh.res", "must be at least 1".into()))
+            Err(fault("mesh.res", "must be at least 1"))
         }
-        _ => {}
+        _ => Ok(()),
     }
+}
+
+/// The keys of every variant, and the `[paper]` section.
+fn variants_and_paper(scene: &Scene) -> Result<(), Fault> {
     for (variant, sets) in &scene.variants {
         for key in sets.keys() {
-            check_key_syntax(key).map_err(|m| bad(&format!("variants.{variant}.{key}"), m))?;
+            check_key_syntax(key).map_err(|m| fault(format!("variants.{variant}.{key}"), m))?;
         }
     }
-    if let Some(paper) = &scene.paper {
-        self::paper(paper, scene).map_err(|(key, m)| bad(&key, m))?;
+    match &scene.paper {
+        Some(spec) => paper(spec, scene),
+        None => Ok(()),
     }
-    limits::check_steps(scene, origin)
 }
 
 /// Checks the section against its scene: the sweep key's syntax, distinct values, probes
 /// the scene defines, method or variant names, and one value per swept value. The error
 /// is the key at fault and what is wrong.
-fn paper(spec: &PaperSpec, scene: &Scene) -> Result<(), (String, String)> {
+fn paper(spec: &PaperSpec, scene: &Scene) -> Result<(), Fault> {
     check_key_syntax(&spec.sweep).map_err(|m| ("paper.sweep".into(), m))?;
     if spec.values.is_empty() {
         return Err(("paper.values".into(), "give at least one value".into()));
