@@ -108,16 +108,7 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
     let out = request.out.as_deref().map(OutputDir::create).transpose()?;
     let mut rows = Vec::new();
     for (sweep_value, label, variant, overrides, scene) in plans {
-        let options = RunOptions {
-            out: None,
-            progress: request.progress,
-            variant,
-            overrides: overrides
-                .iter()
-                .map(|o| format!("{}={}", o.key, o.display_value()))
-                .collect(),
-            checkpoint_every: None,
-        };
+        let options = RunOptions::in_memory(variant, &overrides, request.progress);
         let result = run_scene(&scene, &options)
             .map(|(r, _)| r)
             .map_err(|e| e.to_string());

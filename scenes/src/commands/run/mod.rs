@@ -63,10 +63,7 @@ pub fn run_named(
             out: out.map(Path::to_path_buf),
             progress,
             variant: variant.map(str::to_string),
-            overrides: overrides
-                .iter()
-                .map(|o| format!("{}={}", o.key, o.display_value()))
-                .collect(),
+            overrides: options::recorded(overrides),
             checkpoint_every,
         },
     )

@@ -1,5 +1,6 @@
 //! How a run is asked for.
 
+use crate::format::Override;
 use std::path::PathBuf;
 
 /// How to run.
@@ -16,4 +17,26 @@ pub struct RunOptions {
     /// Write a checkpoint into the output folder every this many accepted steps (and at the
     /// end), so that an interrupted run can be resumed (needs `out`).
     pub checkpoint_every: Option<usize>,
+}
+
+impl RunOptions {
+    /// A run without an output folder or checkpoints (one run of a comparison or a study),
+    /// recording `variant` and `overrides`.
+    pub fn in_memory(variant: Option<String>, overrides: &[Override], progress: bool) -> Self {
+        RunOptions {
+            out: None,
+            progress,
+            variant,
+            overrides: recorded(overrides),
+            checkpoint_every: None,
+        }
+    }
+}
+
+/// The overrides as a result records them: `KEY=VALUE`.
+pub(super) fn recorded(overrides: &[Override]) -> Vec<String> {
+    overrides
+        .iter()
+        .map(|o| format!("{}={}", o.key, o.display_value()))
+        .collect()
 }

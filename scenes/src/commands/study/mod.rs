@@ -170,16 +170,7 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
     let out = request.out.as_deref().map(OutputDir::create).transpose()?;
     let mut runs = Vec::new();
     for (method, element, label, resolution, overrides, scene) in plans {
-        let options = RunOptions {
-            out: None,
-            progress: request.progress,
-            variant: None,
-            overrides: overrides
-                .iter()
-                .map(|o| format!("{}={}", o.key, o.display_value()))
-                .collect(),
-            checkpoint_every: None,
-        };
+        let options = RunOptions::in_memory(None, &overrides, request.progress);
         let result = run_scene(&scene, &options)
             .map(|(r, _)| r)
             .map_err(|e| e.to_string());
