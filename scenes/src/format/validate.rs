@@ -14,7 +14,7 @@ use super::probes::ProbeSpec;
 use super::scene::Scene;
 use super::stepping::{SteppingSpec, VOLUME_PROJECTIONS};
 use crate::error::SceneError;
-use crate::resolve::SceneBodies;
+use isochor_mesh::element::Part;
 use isochor_solvers::{Method, Problem};
 use toml::Value;
 
@@ -521,13 +521,14 @@ fn paper(spec: &PaperSpec, scene: &Scene) -> Result<(), Fault> {
     Ok(())
 }
 
-/// The checks that need the built problem: supports that hold a quasi-static body, and
+/// The checks that need the built problem: supports that hold each quasi-static body (the
+/// bodies by name and where they lie in the mesh), and
 /// obstacles clear of the body at the start (`contact_tolerance` relative to the mesh's
 /// bounding-box diagonal).
 pub fn problem(
     scene: &Scene,
     problem: &Problem,
-    bodies: &SceneBodies,
+    bodies: &[(&str, &Part)],
     contact_tolerance: f64,
 ) -> Result<(), SceneError> {
     supports(scene, problem, bodies)?;
@@ -536,12 +537,12 @@ pub fn problem(
 
 /// Refuses quasi-static stepping when the Dirichlet conditions leave a rigid motion of a body
 /// free: the equilibrium is singular along it.
-fn supports(scene: &Scene, problem: &Problem, bodies: &SceneBodies) -> Result<(), SceneError> {
+fn supports(scene: &Scene, problem: &Problem, bodies: &[(&str, &Part)]) -> Result<(), SceneError> {
     if scene.is_dynamic() {
         return Ok(());
     }
-    for (name, part) in bodies.names.iter().zip(&bodies.parts) {
-        let free = if let [_] = bodies.parts[..] {
+    for &(name, part) in bodies {
+        let free = if let [_] = bodies {
             problem.unremoved_rigid_modes()
         } else {
             problem.unremoved_rigid_modes_of(&part.nodes().collect::<Vec<_>>())
@@ -549,7 +550,7 @@ fn supports(scene: &Scene, problem: &Problem, bodies: &SceneBodies) -> Result<()
         if free == 0 {
             continue;
         }
-        let body = if let [_] = bodies.parts[..] {
+        let body = if let [_] = bodies {
             "the body".to_string()
         } else {
             format!("body '{name}'")

@@ -20,6 +20,7 @@ pub use selections::Selections;
 
 use crate::error::SceneError;
 use crate::format::{limits, validate, Scene};
+use isochor_mesh::element::Part;
 use isochor_mesh::Zones;
 use isochor_solvers::{Method, Problem, Settings, Stepping};
 
@@ -80,7 +81,13 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         loads,
         obstacles,
     };
-    validate::problem(scene, &problem, &bodies, settings.contact_tolerance)?;
+    let named: Vec<(&str, &Part)> = bodies
+        .names
+        .iter()
+        .map(String::as_str)
+        .zip(&bodies.parts)
+        .collect();
+    validate::problem(scene, &problem, &named, settings.contact_tolerance)?;
     Ok(ResolvedScene {
         problem,
         stepping,
