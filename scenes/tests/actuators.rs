@@ -87,7 +87,7 @@ fn finger_bends_towards_its_base_and_mixed_bends_more() {
 #[test]
 fn generated_groups_resolve_like_a_files() {
     let scene = load_scene("cushion", None, &[]).unwrap();
-    let mesh = mesh_with_groups(&scene.mesh, TetElement::Tet4, true).unwrap();
+    let mesh = mesh_with_groups(scene.mesh.as_ref().unwrap(), TetElement::Tet4, true).unwrap();
     let s = Selections::new(&mesh, &scene.selections).unwrap();
     let (_, groups) = generate::cushion(2).unwrap();
     assert_eq!(
@@ -103,7 +103,7 @@ fn generated_groups_resolve_like_a_files() {
     };
     specs.insert("named".into(), named("clamped"));
     specs.insert("unknown".into(), named("chamber"));
-    let mesh = mesh_with_groups(&spine.mesh, TetElement::Tet10, true).unwrap();
+    let mesh = mesh_with_groups(spine.mesh.as_ref().unwrap(), TetElement::Tet10, true).unwrap();
     let s = Selections::new(&mesh, &specs).unwrap();
     let sorted = |f: &[[usize; 3]]| {
         let mut f = f.to_vec();

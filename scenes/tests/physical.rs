@@ -108,7 +108,7 @@ fn physical_selections_on_quadratic_tets() {
     );
     let mut scene = write_scene(&dir, "tet10.toml", &file_mesh(), &selections).unwrap();
     scene.element = isochor_scenes::format::ElementName(isochor_mesh::element::TetElement::Tet10);
-    let resolved = mesh_with_groups(&scene.mesh, scene.element(), true).unwrap();
+    let resolved = mesh_with_groups(scene.mesh.as_ref().unwrap(), scene.element(), true).unwrap();
     let s = Selections::new(&resolved, &scene.selections).unwrap();
     let mesh = &resolved.mesh;
     let x = mesh.nodes();

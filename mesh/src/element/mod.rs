@@ -10,7 +10,8 @@
 //!   gradient of an interpolated map.
 //! - [`ElementMesh`]: a [`crate::TetMesh`] of corners plus mid-edge nodes; [`RestGeometry`]:
 //!   `w_q det(dX/dxi)` and `dN_a/dX` per element and quadrature point; [`ElementSurface`]:
-//!   the boundary as 3- or 6-node triangles.
+//!   the boundary as 3- or 6-node triangles; [`ElementMesh::disjoint_union`]: several
+//!   bodies as one mesh, each a [`Part`] of it.
 //!
 //! # Node order
 //!
@@ -39,6 +40,7 @@ mod rest;
 mod surface;
 mod tet;
 mod triangle;
+mod union;
 
 pub use gradient::deformation_gradient;
 pub use mesh::ElementMesh;
@@ -49,3 +51,4 @@ pub(crate) use surface::faces_enclosed_volume;
 pub use surface::ElementSurface;
 pub use tet::{TetElement, TET_EDGES};
 pub use triangle::{TriElement, TRI_EDGES};
+pub use union::Part;

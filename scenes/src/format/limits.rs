@@ -68,7 +68,7 @@ impl Footprint {
     /// The estimate for `scene`, or `None` when its mesh size is not known before reading
     /// (a mesh file whose header cannot be read: the reader reports why).
     pub fn of(scene: &Scene) -> Option<Footprint> {
-        let (vertices, tets, file_nodes) = mesh_counts(&scene.mesh)?;
+        let (vertices, tets, file_nodes) = scene_counts(scene)?;
         let nodes = match (scene.element(), file_nodes) {
             // Every edge gets a node; a tet mesh has about `V + T` edges.
             (TetElement::Tet10, _) => file_nodes.unwrap_or(vertices) + vertices + tets,
@@ -122,6 +122,28 @@ fn density(method: Method) -> f64 {
         Method::MixedP1 | Method::MixedP1Log | Method::Zonal => 1.5,
         Method::Condensed | Method::Dual => 4.0,
     }
+}
+
+/// Every body's mesh with the prefix of its keys (`""` for `[mesh]`, `bodies.N.` else).
+fn mesh_prefixes(scene: &Scene) -> impl Iterator<Item = (String, &MeshSpec)> {
+    let own = scene.mesh.iter().map(|m| (String::new(), m));
+    let bodies = scene.bodies.iter().enumerate();
+    own.chain(bodies.map(|(i, b)| (format!("bodies.{i}."), &b.mesh)))
+}
+
+/// Vertices, tets and (for files) nodes of every body's mesh together.
+fn scene_counts(scene: &Scene) -> Option<(f64, f64, Option<f64>)> {
+    let mut total = (0.0, 0.0, None);
+    for spec in scene.meshes() {
+        let (vertices, tets, nodes) = mesh_counts(spec)?;
+        total.0 += vertices;
+        total.1 += tets;
+        total.2 = match (total.2, nodes) {
+            (None, None) => None,
+            (a, b) => Some(a.unwrap_or(0.0) + b.unwrap_or(vertices)),
+        };
+    }
+    Some(total)
 }
 
 /// Vertices, tets and (for a file) nodes of a mesh, from its parameters or a file's header.
@@ -337,7 +359,7 @@ pub fn check_memory(scene: &Scene, origin: &str) -> Result<(), SceneError> {
             ("stepping.steps", "steps")
         };
         (
-            key,
+            key.to_string(),
             format!(
                 "{name} = {} would keep ~{} of step records",
                 scene.num_steps(),
@@ -345,7 +367,15 @@ pub fn check_memory(scene: &Scene, origin: &str) -> Result<(), SceneError> {
             ),
         )
     } else {
-        let (key, value) = mesh_key(&scene.mesh);
+        // The largest body's mesh is the one to shrink.
+        let tets = |spec: &MeshSpec| mesh_counts(spec).map_or(0.0, |c| c.1);
+        let (key, value) = mesh_prefixes(scene)
+            .max_by(|a, b| tets(a.1).total_cmp(&tets(b.1)))
+            .map(|(prefix, largest)| {
+                let (key, value) = mesh_key(largest);
+                (format!("{prefix}{key}"), value)
+            })
+            .unwrap_or_else(|| ("mesh".into(), "the scene's meshes".into()));
         (
             key,
             format!(
@@ -360,7 +390,7 @@ pub fn check_memory(scene: &Scene, origin: &str) -> Result<(), SceneError> {
     };
     Err(SceneError::Invalid {
         origin: origin.to_string(),
-        key: key.to_string(),
+        key,
         message: format!(
             "{what} (estimate); this machine has {} of memory and a run may use half ({})",
             size(memory),
@@ -428,7 +458,7 @@ mod tests {
         assert_eq!(f.unknowns, 3.0 * (81.0 + 81.0 + 192.0));
         // A huge resolution is a finite estimate, not an overflow.
         let mut huge = scene(&[]);
-        if let MeshSpec::Box { res, .. } = &mut huge.mesh {
+        if let Some(MeshSpec::Box { res, .. }) = &mut huge.mesh {
             *res = usize::MAX;
         }
         let f = Footprint::of(&huge).unwrap();

@@ -120,9 +120,12 @@ impl SceneSource {
     }
 
     fn resolve_paths(&self, mut scene: Scene) -> Scene {
-        if let MeshSpec::File { path } = &mut scene.mesh {
-            if path.is_relative() {
-                *path = self.base_dir.join(&*path);
+        let meshes = scene.mesh.iter_mut();
+        for mesh in meshes.chain(scene.bodies.iter_mut().map(|b| &mut b.mesh)) {
+            if let MeshSpec::File { path } = mesh {
+                if path.is_relative() {
+                    *path = self.base_dir.join(&*path);
+                }
             }
         }
         scene

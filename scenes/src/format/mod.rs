@@ -12,6 +12,7 @@
 //! Inside this layer: `common` and `names` at the bottom, then the sections, then `scene`,
 //! then `limits`, `overrides`, `validate`, `parse`, and `builtin`, `load` on top.
 
+mod bodies;
 pub mod builtin;
 mod common;
 mod conditions;
@@ -33,6 +34,7 @@ mod stepping;
 pub mod validate;
 mod zones;
 
+pub use bodies::{BodyRef, BodySpec, PlacementSpec, RotationSpec, SCENE_BODY};
 pub use common::Vector;
 pub use conditions::{CurveSpec, DirichletSpec, LoadsSpec, MotionSpec, PressureSpec, TractionSpec};
 pub use load::{load_scene, SceneSource};

@@ -1,5 +1,6 @@
 //! The whole scene: one field per section of the file.
 
+use super::bodies::{BodyRef, BodySpec, SCENE_BODY};
 use super::conditions::{DirichletSpec, LoadsSpec};
 use super::material::{MaterialSpec, RegionSpec};
 use super::mesh::MeshSpec;
@@ -31,10 +32,17 @@ pub struct Scene {
     /// The element: `"tet4"` (default) or `"tet10"`, orthogonal to the method.
     #[serde(default)]
     pub element: ElementName,
-    /// The mesh.
-    pub mesh: MeshSpec,
-    /// Material parameters.
+    /// The mesh of the scene's own body (named `"body"`); may be left out when `[[bodies]]`
+    /// lists every body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<MeshSpec>,
+    /// Material parameters of the scene's own body, and the keys every other body and region
+    /// inherits.
     pub material: MaterialSpec,
+    /// More bodies (`[[bodies]]`), each with its mesh, its differing material keys, a rigid
+    /// placement and an initial velocity.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<BodySpec>,
     /// Parts of the body with their own material (`[[regions]]`), each the tets of a
     /// selection; elements no region claims are made of `[material]`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -97,6 +105,26 @@ impl Scene {
             SteppingSpec::QuasiStatic { steps, .. } => steps,
             SteppingSpec::Dynamic { frames, .. } => frames,
         }
+    }
+
+    /// Every body in order: the scene's own (`[mesh]`, named `"body"`) if it has one, then
+    /// the `[[bodies]]` entries.
+    pub fn bodies(&self) -> Vec<BodyRef<'_>> {
+        let own = self.mesh.as_ref().map(|mesh| BodyRef {
+            name: SCENE_BODY,
+            mesh,
+            material: None,
+            place: None,
+            velocity: None,
+        });
+        own.into_iter()
+            .chain(self.bodies.iter().map(BodyRef::from))
+            .collect()
+    }
+
+    /// Every body's mesh, in the order of [`Scene::bodies`].
+    pub fn meshes(&self) -> impl Iterator<Item = &MeshSpec> {
+        self.mesh.iter().chain(self.bodies.iter().map(|b| &b.mesh))
     }
 
     /// Whether the scene is dynamic.

@@ -35,6 +35,8 @@ pub struct SelectionSpec {
     /// finger, torso, creature). A surface group selects its triangles and their vertices, a volume group its
     /// tets and their vertices (with `surface`, its tets' boundary faces and their vertices).
     pub physical: Option<String>,
+    /// Only what belongs to the named body (`[[bodies]]`, or `"body"` for the scene's own).
+    pub body: Option<String>,
     /// Geometric tolerance (default: 1e-6 times the mesh's bounding-box diagonal).
     pub tolerance: Option<f64>,
 }

@@ -3,6 +3,7 @@
 //! section, the bounds on steps ([`super::limits`]), and, once the problem is built, supports
 //! that hold a quasi-static body and obstacles clear of the body at the start.
 
+use super::bodies::SCENE_BODY;
 use super::limits;
 use super::mesh::MeshSpec;
 use super::names::{ZonalEnergyName, ZoneKind};
@@ -13,6 +14,7 @@ use super::probes::ProbeSpec;
 use super::scene::Scene;
 use super::stepping::{SteppingSpec, VOLUME_PROJECTIONS};
 use crate::error::SceneError;
+use isochor_mesh::element::Part;
 use isochor_solvers::{Method, Problem};
 use toml::Value;
 
@@ -63,7 +65,8 @@ type SectionCheck = fn(&Scene) -> Result<(), Fault>;
 /// Checks the cross-key rules of `scene` (read from `origin`) that serde cannot express, one
 /// section at a time, then the bounds on its steps.
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
-    let sections: [SectionCheck; 9] = [
+    let sections: [SectionCheck; 10] = [
+        bodies,
         material_and_regions,
         selections,
         conditions,
@@ -71,7 +74,7 @@ pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
         probes,
         stepping,
         solver_and_output,
-        mesh,
+        meshes,
         variants_and_paper,
     ];
     for check in sections {
@@ -104,6 +107,59 @@ fn selection_defined(scene: &Scene, key: String, name: &str) -> Result<(), Fault
         key,
         format!("unknown selection '{name}' (defined: {names})"),
     ))
+}
+
+/// A body at least (`[mesh]` or `[[bodies]]`); bodies with distinct names, placements with a
+/// non-zero axis, initial velocities only in dynamics; a selection's `body` names one.
+fn bodies(scene: &Scene) -> Result<(), Fault> {
+    if scene.mesh.is_none() && scene.bodies.is_empty() {
+        return Err(fault(
+            "mesh",
+            "give [mesh] or at least one [[bodies]] entry",
+        ));
+    }
+    let all = scene.bodies();
+    for (i, body) in scene.bodies.iter().enumerate() {
+        let key = format!("bodies.{i}");
+        if body.name.is_empty() {
+            return Err(fault(format!("{key}.name"), "must not be empty"));
+        }
+        if all.iter().filter(|b| b.name == body.name).count() > 1 {
+            return Err(fault(
+                format!("{key}.name"),
+                format!(
+                    "'{}' names two bodies (the scene's own [mesh] is '{SCENE_BODY}')",
+                    body.name
+                ),
+            ));
+        }
+        if let Some(r) = body.place.as_ref().and_then(|p| p.rotate.as_ref()) {
+            if r.axis.iter().all(|&a| a == 0.0) {
+                return Err(fault(
+                    format!("{key}.place.rotate.axis"),
+                    "must not be zero",
+                ));
+            }
+        }
+        if body.velocity.is_some() && !scene.is_dynamic() {
+            return Err(fault(
+                format!("{key}.velocity"),
+                "an initial velocity needs dynamic stepping",
+            ));
+        }
+    }
+    for (name, s) in &scene.selections {
+        if let Some(body) = &s.body {
+            if !all.iter().any(|b| b.name == body) {
+                let names: Vec<&str> = all.iter().map(|b| b.name).collect();
+                return Err(fault(
+                    format!("selections.{name}.body"),
+                    format!("no body named '{body}' (bodies: {})", names.join(", ")),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// `[material]` gives one stiffness; every `[[regions]]` entry names a selection.
@@ -352,9 +408,21 @@ fn solver_and_output(scene: &Scene) -> Result<(), Fault> {
     Ok(())
 }
 
-/// `[mesh]`: resolutions and cell counts of the generators that have them.
-fn mesh(scene: &Scene) -> Result<(), Fault> {
-    match &scene.mesh {
+/// `[mesh]` and each body's mesh: resolutions and cell counts of the generators that have
+/// them.
+fn meshes(scene: &Scene) -> Result<(), Fault> {
+    if let Some(spec) = &scene.mesh {
+        mesh(spec).map_err(|(key, message)| (format!("mesh.{key}"), message))?;
+    }
+    for (i, body) in scene.bodies.iter().enumerate() {
+        mesh(&body.mesh).map_err(|(key, message)| (format!("bodies.{i}.mesh.{key}"), message))?;
+    }
+    Ok(())
+}
+
+/// One mesh: its resolution and cell counts (the fault's key is within the mesh table).
+fn mesh(spec: &MeshSpec) -> Result<(), Fault> {
+    match spec {
         MeshSpec::Box {
             res,
             res_multiple_of,
@@ -363,12 +431,12 @@ fn mesh(scene: &Scene) -> Result<(), Fault> {
         } => {
             if *res == 0 || *res_multiple_of == 0 || res % res_multiple_of != 0 {
                 return Err(fault(
-                    "mesh.res",
+                    "res",
                     format!("{res} must be a positive multiple of {res_multiple_of}"),
                 ));
             }
             if cells.contains(&0) {
-                return Err(fault("mesh.cells", "every entry must be at least 1"));
+                return Err(fault("cells", "every entry must be at least 1"));
             }
             Ok(())
         }
@@ -378,7 +446,7 @@ fn mesh(scene: &Scene) -> Result<(), Fault> {
         | MeshSpec::Ball { res, .. }
             if *res == 0 =>
         {
-            Err(fault("mesh.res", "must be at least 1"))
+            Err(fault("res", "must be at least 1"))
         }
         _ => Ok(()),
     }
@@ -453,35 +521,53 @@ fn paper(spec: &PaperSpec, scene: &Scene) -> Result<(), Fault> {
     Ok(())
 }
 
-/// The checks that need the built problem: supports that hold a quasi-static body, and
+/// The checks that need the built problem: supports that hold each quasi-static body (the
+/// bodies by name and where they lie in the mesh), and
 /// obstacles clear of the body at the start (`contact_tolerance` relative to the mesh's
 /// bounding-box diagonal).
-pub fn problem(scene: &Scene, problem: &Problem, contact_tolerance: f64) -> Result<(), SceneError> {
-    supports(scene, problem)?;
+pub fn problem(
+    scene: &Scene,
+    problem: &Problem,
+    bodies: &[(&str, &Part)],
+    contact_tolerance: f64,
+) -> Result<(), SceneError> {
+    supports(scene, problem, bodies)?;
     obstacles_clear(scene, problem, contact_tolerance)
 }
 
-/// Refuses quasi-static stepping when the Dirichlet conditions leave a rigid motion free:
-/// the equilibrium is singular along it.
-fn supports(scene: &Scene, problem: &Problem) -> Result<(), SceneError> {
+/// Refuses quasi-static stepping when the Dirichlet conditions leave a rigid motion of a body
+/// free: the equilibrium is singular along it.
+fn supports(scene: &Scene, problem: &Problem, bodies: &[(&str, &Part)]) -> Result<(), SceneError> {
     if scene.is_dynamic() {
         return Ok(());
     }
-    let free = problem.unremoved_rigid_modes();
-    if free == 0 {
-        return Ok(());
+    for &(name, part) in bodies {
+        let free = if let [_] = bodies {
+            problem.unremoved_rigid_modes()
+        } else {
+            problem.unremoved_rigid_modes_of(&part.nodes().collect::<Vec<_>>())
+        };
+        if free == 0 {
+            continue;
+        }
+        let body = if let [_] = bodies {
+            "the body".to_string()
+        } else {
+            format!("body '{name}'")
+        };
+        return Err(SceneError::Invalid {
+            origin: format!("scene {}", scene.name),
+            key: "dirichlet".into(),
+            message: format!(
+                "quasi-static stepping needs supports that hold {body}, but the Dirichlet \
+                 conditions leave {free} of its 6 rigid motions (3 translations, 3 rotations) \
+                 free, and the equilibrium is singular along them: hold more of it (e.g. clamp \
+                 a face, or three nodes not on one line in every axis), add an obstacle, or use \
+                 dynamic stepping"
+            ),
+        });
     }
-    Err(SceneError::Invalid {
-        origin: format!("scene {}", scene.name),
-        key: "dirichlet".into(),
-        message: format!(
-            "quasi-static stepping needs supports that hold the body, but the Dirichlet \
-             conditions leave {free} of its 6 rigid motions (3 translations, 3 rotations) free, \
-             and the equilibrium is singular along them: hold more of the body (e.g. clamp a \
-             face, or three nodes not on one line in every axis), add an obstacle, or use \
-             dynamic stepping"
-        ),
-    })
+    Ok(())
 }
 
 /// Refuses an obstacle that holds nodes of the body at the start (signed distance below

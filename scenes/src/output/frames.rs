@@ -96,6 +96,7 @@ pub struct FrameWriter {
     encoding: VtuEncoding,
     zone_ids: Option<Vec<i32>>,
     region_ids: Vec<i32>,
+    body_ids: Option<Vec<i32>>,
     deformed_points: bool,
     entries: Vec<(f64, String)>,
 }
@@ -119,9 +120,16 @@ impl FrameWriter {
             encoding,
             zone_ids,
             region_ids,
+            body_ids: None,
             deformed_points: false,
             entries: Vec::new(),
         }
+    }
+
+    /// Writes the body of each tet as the cell field `body` (a scene of several bodies).
+    pub fn with_bodies(mut self, body_ids: Option<Vec<i32>>) -> Self {
+        self.body_ids = body_ids;
+        self
     }
 
     /// Writes the deformed positions as the frames' points instead of the rest positions.
@@ -172,6 +180,9 @@ impl FrameWriter {
         }
         if let Some(z) = &self.zone_ids {
             cells.push(Field::int("zone", z.clone()));
+        }
+        if let Some(b) = self.body_ids.as_ref().filter(|b| b.len() == n) {
+            cells.push(Field::int("body", b.clone()));
         }
         let mut points = vec![Field::vector("displacement", displacement)];
         if velocities.len() == positions.len() {

@@ -1,14 +1,20 @@
 //! The materials of a scene in the solver's types: the body's `[material]` and each region's.
 
+use super::bodies::SceneBodies;
 use super::selections::Selections;
 use crate::error::SceneError;
 use crate::format::{rename_aliases, KappaName, MaterialSpec, ModelName, Scene, ZonalEnergyName};
 use isochor_energies::ParameterError;
 use isochor_solvers::{Epidermis, Kappa, Material, MaterialModel, Region, ZonalEnergy};
 
-/// The regions of the scene, each the tets of its selection with its material.
-pub fn regions(scene: &Scene, selections: &Selections) -> Result<Vec<Region>, SceneError> {
-    scene
+/// The regions of the scene, each the tets of its selection with its material; then each
+/// body whose material differs from `[material]`, less the tets a region claims.
+pub fn regions(
+    scene: &Scene,
+    selections: &Selections,
+    bodies: &SceneBodies,
+) -> Result<Vec<Region>, SceneError> {
+    let mut regions = scene
         .regions
         .iter()
         .enumerate()
@@ -16,10 +22,36 @@ pub fn regions(scene: &Scene, selections: &Selections) -> Result<Vec<Region>, Sc
             Ok(Region {
                 name: r.name.clone(),
                 elements: selections.tets(&r.selection)?.to_vec(),
-                material: region_material(&scene.material, &r.material, i)?,
+                material: region_material(
+                    &scene.material,
+                    &r.material,
+                    format!("regions.{i}.material"),
+                )?,
             })
         })
-        .collect()
+        .collect::<Result<Vec<_>, SceneError>>()?;
+    let mut claimed = vec![false; bodies.parts.last().map_or(0, |p| p.elements.end)];
+    regions
+        .iter()
+        .flat_map(|r| &r.elements)
+        .for_each(|&e| claimed[e] = true);
+    let own = usize::from(scene.mesh.is_some());
+    for (i, (body, part)) in scene.bodies().iter().zip(&bodies.parts).enumerate() {
+        let Some(table) = body.material.filter(|t| !t.is_empty()) else {
+            continue;
+        };
+        let origin = format!("bodies.{}.material", i - own);
+        let material = region_material(&scene.material, table, origin)?;
+        let elements: Vec<usize> = part.elements.clone().filter(|&e| !claimed[e]).collect();
+        if !elements.is_empty() {
+            regions.push(Region {
+                name: body.name.to_string(),
+                elements,
+                material,
+            });
+        }
+    }
+    Ok(regions)
 }
 
 /// Material parameters from a scene's `[material]` table.
@@ -168,13 +200,13 @@ fn material_model(spec: &MaterialSpec) -> Result<MaterialModel, String> {
     })
 }
 
-/// The material of region `index`: the body's `[material]` keys overlaid with the region's.
+/// The material of a region or body (its keys at `origin`): the scene's `[material]` keys
+/// overlaid with its own.
 fn region_material(
     body: &MaterialSpec,
     overrides: &toml::Table,
-    index: usize,
+    origin: String,
 ) -> Result<Material, SceneError> {
-    let origin = format!("regions.{index}.material");
     let invalid = |key: String, message: String| SceneError::Invalid {
         origin: "scene".into(),
         key,

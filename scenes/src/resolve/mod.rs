@@ -6,18 +6,21 @@
 //! Inside this layer: `mesh`, then `selections`, then `zones`, `material` and `problem`, then
 //! this module on top.
 
+pub mod bodies;
 pub mod material;
 pub mod mesh;
 pub mod problem;
 pub mod selections;
 pub mod zones;
 
+pub use bodies::{build_bodies, SceneBodies};
 pub use material::build_material;
 pub use mesh::{build_mesh, mesh_with_groups, read_mesh_file, SceneMesh};
 pub use selections::Selections;
 
 use crate::error::SceneError;
 use crate::format::{limits, validate, Scene};
+use isochor_mesh::element::Part;
 use isochor_mesh::Zones;
 use isochor_solvers::{Method, Problem, Settings, Stepping};
 
@@ -34,25 +37,32 @@ pub struct ResolvedScene {
     pub selections: Selections,
     /// The scene's zones, if the method constrains them or a probe measures them.
     pub zones: Option<Zones>,
+    /// Where each body lies in the mesh, and its initial velocity.
+    pub bodies: SceneBodies,
 }
 
-/// Resolves a scene: checks that its estimated memory fits ([`limits`]), builds the mesh and
-/// its groups, resolves every selection, the regions and the zones, and converts the rest to
+/// Resolves a scene: checks that its estimated memory fits ([`limits`]), builds every body's
+/// mesh with its groups and joins them ([`bodies`]), resolves every selection, the regions and the zones, and converts the rest to
 /// the solver's types; then refuses a quasi-static scene whose supports leave a rigid motion
 /// free and an obstacle that overlaps the body at the start ([`validate::problem`]).
 pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
     limits::check_memory(scene, &format!("scene {}", scene.name))?;
     let wants_groups = scene.selections.values().any(|s| s.physical.is_some());
-    let mesh = mesh_with_groups(&scene.mesh, scene.element(), wants_groups)?;
+    let (mesh, bodies) = build_bodies(scene, scene.element(), wants_groups)?;
     let material = build_material(&scene.material)?;
-    let selections = Selections::new(&mesh, &scene.selections)?;
-    let regions = material::regions(scene, &selections)?;
+    let selections = Selections::of_bodies(&mesh, &bodies, &scene.selections)?;
+    let regions = material::regions(scene, &selections, &bodies)?;
     let dirichlet = problem::dirichlet(scene, &selections)?;
     let loads = problem::loads(scene, &selections)?;
     let obstacles = problem::obstacles(scene)?;
     let method = scene.method();
     let zones = if zones::needed(scene) {
-        Some(zones::zones(scene, mesh.mesh.corners(), &selections)?)
+        Some(zones::zones(
+            scene,
+            mesh.mesh.corners(),
+            &selections,
+            &bodies,
+        )?)
     } else {
         None
     };
@@ -71,12 +81,19 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         loads,
         obstacles,
     };
-    validate::problem(scene, &problem, settings.contact_tolerance)?;
+    let named: Vec<(&str, &Part)> = bodies
+        .names
+        .iter()
+        .map(String::as_str)
+        .zip(&bodies.parts)
+        .collect();
+    validate::problem(scene, &problem, &named, settings.contact_tolerance)?;
     Ok(ResolvedScene {
         problem,
         stepping,
         settings,
         selections,
         zones,
+        bodies,
     })
 }

@@ -8,9 +8,11 @@
 //! resolved for every selection; a kind a selection cannot give (a plane holds no tet's
 //! centroid) is kept as the error its user meets.
 
+use super::bodies::SceneBodies;
 use super::mesh::SceneMesh;
 use crate::error::SceneError;
 use crate::format::SelectionSpec;
+use isochor_mesh::element::Part;
 use isochor_mesh::io::{PhysicalGroup, PhysicalGroups};
 use isochor_mesh::{
     BoundarySurface, ElementMesh, FaceSelection, Region, TetMesh, Vec3, VertexSelection,
@@ -43,6 +45,34 @@ impl Selected {
             tets: Err(message),
         }
     }
+
+    /// What of this selection belongs to body `name` (lying in `part`).
+    fn within(self, part: &Part, name: &str) -> Self {
+        fn keep<T>(
+            set: Result<Vec<T>, String>,
+            belongs: impl Fn(&T) -> bool,
+            what: &str,
+            name: &str,
+        ) -> Result<Vec<T>, String> {
+            let mut set = set?;
+            set.retain(belongs);
+            if set.is_empty() {
+                return Err(format!("selects no {what} of body '{name}'"));
+            }
+            Ok(set)
+        }
+        Selected {
+            nodes: keep(self.nodes, |&n| part.has_node(n), "node", name),
+            vertices: keep(self.vertices, |v| part.vertices.contains(v), "vertex", name),
+            faces: keep(
+                self.faces,
+                |f| f.iter().all(|v| part.vertices.contains(v)),
+                "boundary face",
+                name,
+            ),
+            tets: keep(self.tets, |e| part.elements.contains(e), "tet", name),
+        }
+    }
 }
 
 /// What a physical group selects on the mesh: vertices (sorted), outward boundary faces,
@@ -66,12 +96,24 @@ struct Resolver<'a> {
     default_tolerance: f64,
     groups: Option<&'a PhysicalGroups>,
     source: &'a str,
+    bodies: &'a SceneBodies,
 }
 
 impl Selections {
-    /// Resolves every selection of `specs` on the scene's mesh and groups.
+    /// Resolves every selection of `specs` on the mesh and groups of a scene of one body
+    /// (named `"body"`).
     pub fn new(
         mesh: &SceneMesh,
+        specs: &BTreeMap<String, SelectionSpec>,
+    ) -> Result<Self, SceneError> {
+        Self::of_bodies(mesh, &SceneBodies::one(&mesh.mesh), specs)
+    }
+
+    /// Resolves every selection of `specs` on the scene's mesh and groups, a selection with
+    /// `body` keeping what lies in that body.
+    pub fn of_bodies(
+        mesh: &SceneMesh,
+        bodies: &SceneBodies,
         specs: &BTreeMap<String, SelectionSpec>,
     ) -> Result<Self, SceneError> {
         let elements = &mesh.mesh;
@@ -90,6 +132,7 @@ impl Selections {
             default_tolerance: 1e-6 * (hi - lo).norm(),
             groups: mesh.groups.as_ref(),
             source: &mesh.source,
+            bodies,
         };
         let sets = specs
             .iter()
@@ -155,6 +198,19 @@ fn empty(what: &str) -> String {
 impl Resolver<'_> {
     /// Every kind one selection selects.
     fn resolve(&self, spec: &SelectionSpec) -> Selected {
+        let Some(body) = &spec.body else {
+            return self.resolve_anywhere(spec);
+        };
+        match self.bodies.index(body) {
+            Ok(b) => self
+                .resolve_anywhere(spec)
+                .within(&self.bodies.parts[b], body),
+            Err(message) => Selected::failed(message),
+        }
+    }
+
+    /// Every kind one selection selects on the whole mesh.
+    fn resolve_anywhere(&self, spec: &SelectionSpec) -> Selected {
         let region = match region(spec, self.default_tolerance) {
             Ok(r) => r,
             Err(message) => return Selected::failed(message),

@@ -1,5 +1,6 @@
 //! The zones of a scene's `[zones]` on its mesh.
 
+use super::bodies::SceneBodies;
 use super::selections::Selections;
 use crate::error::SceneError;
 use crate::format::{Scene, ZoneKind};
@@ -15,13 +16,28 @@ pub fn needed(scene: &Scene) -> bool {
             .any(|p| matches!(p, crate::format::ProbeSpec::ZoneVolumeChange { .. }))
 }
 
-/// The zones of the scene's `[zones]` on `mesh` (one global zone if absent).
-pub fn zones(scene: &Scene, mesh: &TetMesh, selections: &Selections) -> Result<Zones, SceneError> {
+/// The zones of the scene's `[zones]` on `mesh` (if absent, one global zone per body: each
+/// body keeps its own volume).
+pub fn zones(
+    scene: &Scene,
+    mesh: &TetMesh,
+    selections: &Selections,
+    bodies: &SceneBodies,
+) -> Result<Zones, SceneError> {
+    let global = || {
+        Zones::from_sets(
+            bodies
+                .parts
+                .iter()
+                .map(|p| p.elements.clone().collect())
+                .collect(),
+        )
+    };
     let Some(spec) = &scene.zones else {
-        return Ok(Zones::global(mesh));
+        return Ok(global());
     };
     Ok(match spec.kind {
-        ZoneKind::Global => Zones::global(mesh),
+        ZoneKind::Global => global(),
         ZoneKind::None => Zones::from_sets(Vec::new()),
         ZoneKind::KRing => Zones::k_ring_cover(mesh, spec.k.unwrap_or(1))?,
         ZoneKind::Painted => {

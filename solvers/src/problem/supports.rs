@@ -26,6 +26,30 @@ impl Problem {
             .flat_map(|d| d.nodes.iter().map(move |&node| (node, d.axes)));
         free_rigid_modes(self.mesh.nodes(), prescribed)
     }
+
+    /// [`Problem::unremoved_rigid_modes`] of the part of the mesh made of `nodes` (one body of
+    /// several): its rigid motions about its own centroid, held by its prescribed nodes.
+    pub fn unremoved_rigid_modes_of(&self, nodes: &[usize]) -> usize {
+        if !self.obstacles.is_empty() {
+            return 0;
+        }
+        let all = self.mesh.nodes();
+        let mut local = vec![usize::MAX; all.len()];
+        for (i, &n) in nodes.iter().enumerate() {
+            if let Some(l) = local.get_mut(n) {
+                *l = i;
+            }
+        }
+        let positions: Vec<Vec3> = nodes.iter().filter_map(|&n| all.get(n).copied()).collect();
+        let prescribed = self.dirichlet.iter().flat_map(|d| {
+            let local = &local;
+            d.nodes
+                .iter()
+                .filter_map(move |&node| local.get(node).filter(|&&l| l != usize::MAX))
+                .map(move |&l| (l, d.axes))
+        });
+        free_rigid_modes(&positions, prescribed)
+    }
 }
 
 /// Six minus the rank of the rigid modes of `nodes` restricted to the `(node, axes)` pairs

@@ -58,6 +58,29 @@ impl Simulation {
         })
     }
 
+    /// Sets the velocity of every node (the initial velocity of a dynamic run; quasi-static
+    /// stepping ignores it). Errors: a length other than the number of nodes, or a value that
+    /// is not finite.
+    pub fn set_velocities(&mut self, velocities: Vec<Vec3>) -> Result<(), SolverError> {
+        let n = self.state.positions.len();
+        if velocities.len() != n {
+            return Err(SolverError::InvalidProblem(format!(
+                "{} velocities for {n} nodes",
+                velocities.len()
+            )));
+        }
+        if let Some(node) = velocities
+            .iter()
+            .position(|v| !v.iter().all(|c| c.is_finite()))
+        {
+            return Err(SolverError::InvalidProblem(format!(
+                "the velocity of node {node} is not finite"
+            )));
+        }
+        self.state.velocities = velocities;
+        Ok(())
+    }
+
     /// Continues from `checkpoint` (taken from a [`Frame`](crate::Frame) of a run of this problem with the
     /// same stepping): the next [`Self::run`] starts where that run stood, and gives the
     /// results the uninterrupted run gives, bit for bit.

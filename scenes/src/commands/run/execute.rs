@@ -28,6 +28,7 @@ pub(super) fn execute(
         settings,
         selections,
         zones,
+        bodies,
     } = resolve::build(scene)?;
     let body = Body::new(&problem, selections, zones);
     check_probes_at_rest(scene, &body)?;
@@ -35,8 +36,13 @@ pub(super) fn execute(
         Some(z) => Some(z.tet_zone_ids(body.mesh.num_elements())?),
         None => None,
     };
+    let velocities = bodies.initial_velocities(problem.mesh.num_nodes());
     let mut sim = Simulation::new(problem, settings)?;
-    let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids)?;
+    if let Some(v) = velocities {
+        sim.set_velocities(v)?;
+    }
+    let body_ids = (bodies.parts.len() > 1).then(|| bodies.element_bodies());
+    let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids, body_ids)?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {
         sim.restore((&checkpoint.solver).into())?;
@@ -70,6 +76,7 @@ fn frame_writer(
     sim: &Simulation,
     body: &Body,
     zone_ids: Option<Vec<i32>>,
+    body_ids: Option<Vec<i32>>,
 ) -> Result<Option<FrameWriter>, SceneError> {
     let (Some(dir), true) = (out, scene.output.vtu) else {
         return Ok(None);
@@ -89,6 +96,7 @@ fn frame_writer(
         zone_ids,
         region_ids,
     )
+    .with_bodies(body_ids)
     .with_deformed_points(scene.output.points == PointsName::Deformed);
     w.write(mesh, 0, 0.0, &FrameFields::rest(mesh))?;
     Ok(Some(w))
