@@ -584,3 +584,35 @@ fn a_bad_value_of_every_flat_key_is_a_named_error() {
         );
     }
 }
+
+/// A model's constants are checked as the solver's catalogue says, and a number too large
+/// for `f64` is named as such: `--set E=1e400` said "invalid type: string" before, and
+/// Mooney-Rivlin with `c01 < 0` (not Drucker-stable for every strain) was accepted.
+#[test]
+fn constants_and_overflowing_numbers_are_named_errors() {
+    let error = |sets: &[&str]| {
+        let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        let scene = load_scene(STATIC, None, &overrides);
+        scene
+            .and_then(|s| build(&s).map(|_| ()))
+            .unwrap_err()
+            .to_string()
+    };
+    let e = error(&["E=1e400"]);
+    assert!(
+        e.contains("material.young") && e.contains("1e400 is not a finite number"),
+        "{e}"
+    );
+    let e = error(&["model=mooney-rivlin", "c10=4e4", "c01=-1e3"]);
+    assert!(e.contains("c01") && e.contains("Drucker"), "{e}");
+    let e = error(&["model=mooney-rivlin", "c10=4e4", "c20=1e3"]);
+    assert!(
+        e.contains("c20 is not a constant of model mooney-rivlin (its constants: c10, c01)"),
+        "{e}"
+    );
+    let e = error(&["material.c40=1"]);
+    assert!(
+        e.contains("material.c40") && e.contains("unknown field `c40`"),
+        "{e}"
+    );
+}
