@@ -4,6 +4,7 @@ use super::common::is_false;
 use super::names::{KappaName, ModelName, ZonalEnergyName};
 use isochor_solvers::{ConstantKind, ConstantValue, MaterialModel};
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
+use serde::ser::{SerializeMap, Serializer};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -21,7 +22,7 @@ pub struct MaterialSpec {
     pub model: Option<ModelName>,
     /// The model's constants by key (`c10`, `c01`, `c20`, `c30`, `ogden`, ...), as given;
     /// checked against the model when the material is built.
-    #[serde(flatten)]
+    #[serde(flatten, serialize_with = "in_catalogue_order")]
     pub constants: BTreeMap<String, ConstantSpec>,
     /// Young's modulus `E` (Pa).
     pub young: Option<f64>,
@@ -54,6 +55,29 @@ pub struct MaterialSpec {
     pub epidermis_nu: Option<f64>,
     /// Steepness of the epidermis area penalty.
     pub epidermis_gamma: Option<f64>,
+}
+
+/// The constants in the order of [`material_keys`] (`c10` before `c01`), as scenes write
+/// them.
+fn in_catalogue_order<S: Serializer>(
+    constants: &BTreeMap<String, ConstantSpec>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    let keys = material_keys();
+    let mut map = s.serialize_map(Some(constants.len()))?;
+    for key in &keys {
+        if let Some(value) = constants.get(*key) {
+            map.serialize_entry(key, value)?;
+        }
+    }
+    // Keys of no model (set by a library caller) are kept, to be refused when read.
+    for (key, value) in constants
+        .iter()
+        .filter(|(k, _)| !keys.contains(&k.as_str()))
+    {
+        map.serialize_entry(key, value)?;
+    }
+    map.end()
 }
 
 /// The value of one model constant as a scene gives it: a number or `[[a, b], ...]`.
