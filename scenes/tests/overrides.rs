@@ -1,10 +1,10 @@
-//! Every flat `--set` key ([`FLAT_KEYS`]) reaches what the solver is given: set on a built-in
+//! Every flat `--set` key ([`flat_keys`]: `FLAT_KEYS` and the models' constants) reaches what the solver is given: set on a built-in
 //! scene, its value is read back from the built problem, stepping and settings (or, for the
 //! output keys, from the loaded scene), and was not there before. A bad value for each key is
 //! an error that names the key.
 
 use isochor_mesh::{Vec3, Zones};
-use isochor_scenes::format::overrides::FLAT_KEYS;
+use isochor_scenes::format::overrides::flat_keys;
 use isochor_scenes::format::{PreviewField, VtuEncodingName};
 use isochor_scenes::resolve::{build, ResolvedScene};
 use isochor_scenes::{load_scene, Override, Scene, SceneError};
@@ -521,7 +521,7 @@ fn load(
 fn every_flat_key_has_a_case() {
     let mut keys: Vec<&str> = CASES.iter().map(|c| c.key).collect();
     keys.sort_unstable();
-    let mut flat: Vec<&str> = FLAT_KEYS.iter().map(|(k, _)| *k).collect();
+    let mut flat: Vec<&str> = flat_keys().iter().map(|(k, _)| *k).collect();
     flat.sort_unstable();
     assert_eq!(keys, flat);
 }
@@ -564,10 +564,11 @@ fn a_bad_value_of_every_flat_key_is_a_named_error() {
             Ok(_) => panic!("--set {set} was accepted"),
             Err(e) => e,
         };
-        let dotted = FLAT_KEYS
+        let keys = flat_keys();
+        let dotted = keys
             .iter()
             .find(|(k, _)| *k == case.key)
-            .map(|(_, d)| *d)
+            .map(|(_, d)| d.as_str())
             .unwrap_or(case.key);
         // The scene's key, a material parameter, or a solver setting, by name.
         // An old spelling is named by its new one.
@@ -582,4 +583,36 @@ fn a_bad_value_of_every_flat_key_is_a_named_error() {
             "--set {set}: the error does not name the key: {error}"
         );
     }
+}
+
+/// A model's constants are checked as the solver's catalogue says, and a number too large
+/// for `f64` is named as such: `--set E=1e400` said "invalid type: string" before, and
+/// Mooney-Rivlin with `c01 < 0` (not Drucker-stable for every strain) was accepted.
+#[test]
+fn constants_and_overflowing_numbers_are_named_errors() {
+    let error = |sets: &[&str]| {
+        let overrides: Vec<Override> = sets.iter().map(|s| Override::parse(s).unwrap()).collect();
+        let scene = load_scene(STATIC, None, &overrides);
+        scene
+            .and_then(|s| build(&s).map(|_| ()))
+            .unwrap_err()
+            .to_string()
+    };
+    let e = error(&["E=1e400"]);
+    assert!(
+        e.contains("material.young") && e.contains("1e400 is not a finite number"),
+        "{e}"
+    );
+    let e = error(&["model=mooney-rivlin", "c10=4e4", "c01=-1e3"]);
+    assert!(e.contains("c01") && e.contains("Drucker"), "{e}");
+    let e = error(&["model=mooney-rivlin", "c10=4e4", "c20=1e3"]);
+    assert!(
+        e.contains("c20 is not a constant of model mooney-rivlin (its constants: c10, c01)"),
+        "{e}"
+    );
+    let e = error(&["material.c40=1"]);
+    assert!(
+        e.contains("material.c40") && e.contains("unknown field `c40`"),
+        "{e}"
+    );
 }

@@ -282,3 +282,63 @@ steps = 1
         "{error}"
     );
 }
+
+/// A region may not say what it cannot mean (each was accepted silently before): both `young`
+/// and `mu` (the body refuses it too), keys only the zonal method reads under another method,
+/// a setting of the whole body, and `nu = 0.5` under `standard` (which the solver refused
+/// without naming the region).
+#[test]
+fn region_keys_that_do_nothing_are_named_errors() {
+    let dir = scratch("questionable");
+    let error = |file: &str, material: &str| {
+        bilayer(
+            &dir,
+            file,
+            SOFT,
+            &STIFF_LAYER.replace("young = 10e6", material),
+        )
+        .and_then(|s| check_scene(&s, None).map(|_| ()))
+        .unwrap_err()
+        .to_string()
+    };
+    let both = error("both.toml", "young = 10e6, mu = 3e6");
+    assert!(
+        both.contains("regions.0.material")
+            && both.contains("stiff layer")
+            && both.contains("young or mu"),
+        "{both}"
+    );
+    for key in ["zonal_penalty", "lambda", "beta", "epsilon"] {
+        let e = error(
+            &format!("{key}.toml"),
+            &format!("young = 10e6, {key} = 2.0"),
+        );
+        assert!(
+            e.contains(&format!("regions.0.material.{key}"))
+                && e.contains("stiff layer")
+                && e.contains("mixed-p1"),
+            "{e}"
+        );
+    }
+    let skin = error("skin.toml", "young = 10e6, epidermis = true");
+    assert!(
+        skin.contains("regions.0.material.epidermis") && skin.contains("whole body"),
+        "{skin}"
+    );
+    let mut scene = bilayer(
+        &dir,
+        "incompressible.toml",
+        SOFT,
+        &STIFF_LAYER.replace("young = 10e6", "young = 10e6, nu = 0.5"),
+    )
+    .unwrap();
+    scene.method = isochor_scenes::format::MethodName(isochor_solvers::Method::Standard);
+    let e = isochor_scenes::resolve::build(&scene)
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("regions.0.material.nu") && e.contains("stiff layer"),
+        "{e}"
+    );
+}

@@ -127,7 +127,10 @@ pub use model::regions::Regions;
 pub use nonlinear::report::{IterationReport, StepReport, Timings};
 pub use problem::builder::ProblemBuilder;
 pub use problem::loads::{Dirichlet, Load, Motion, ScheduledLoad};
-pub use problem::material::{Epidermis, Kappa, Material, MaterialModel, ZonalEnergy};
+pub use problem::material::{Epidermis, Kappa, Material, ZonalEnergy};
+pub use problem::material_model::{
+    Constant, ConstantError, ConstantKind, ConstantValue, DensityForm, MaterialModel, ModelInfo,
+};
 pub use problem::method::Method;
 pub use problem::obstacle::{Obstacle, Shape};
 pub use problem::schedule::{Curve, LoadLevel};

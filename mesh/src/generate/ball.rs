@@ -48,3 +48,9 @@ pub fn ball(radius: f64, res: usize) -> Result<TetMesh, MeshError> {
 pub fn ball_surface(radius: f64) -> impl Fn(&Vec3, &Vec3) -> Option<Vec3> + Copy + Send + Sync {
     move |a, b| Wall::Sphere(radius).midpoint(a, b)
 }
+
+/// The vertex and tet counts of [`ball`] at `res`, without generating it.
+pub fn ball_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    ((2.0 * r + 1.0).powi(3), 48.0 * r.powi(3))
+}

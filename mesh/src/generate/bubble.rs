@@ -42,6 +42,13 @@ pub fn bubble(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     Ok((carved.mesh, PhysicalGroups::new(groups)))
 }
 
+/// The vertex (of the uncarved grid: at most a few percent more) and tet counts of
+/// [`bubble`] at `res`, without generating it.
+pub fn bubble_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    ((6.0 * r + 1.0).powi(2) * (3.0 * r + 1.0), 552.0 * r.powi(3))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -55,6 +55,18 @@ pub fn creature(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     Ok((carved.mesh, PhysicalGroups::new(groups)))
 }
 
+/// The vertex and tet counts of [`creature`] at `res`, without generating it. Exact: the
+/// torso's grid, the legs' and neck's without the layers they share with the torso and
+/// head, the head's.
+pub fn creature_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    let torso = (8.0 * r + 1.0) * (5.0 * r + 1.0) * (3.0 * r + 1.0);
+    let legs = 4.0 * (2.0 * r + 1.0) * (r + 1.0) * 2.0 * r;
+    let neck = (3.0 * r - 1.0) * (r + 1.0).powi(2);
+    let head = (2.0 * r + 1.0) * (3.0 * r + 1.0).powi(2);
+    (torso + legs + neck + head, 942.0 * r.powi(3))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -39,6 +39,13 @@ pub fn cushion(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     Ok((carved.mesh, PhysicalGroups::new(groups)))
 }
 
+/// The vertex (of the uncarved grid: at most a few percent more) and tet counts of
+/// [`cushion`] at `res`, without generating it.
+pub fn cushion_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    ((6.0 * r + 1.0).powi(2) * (4.0 * r + 1.0), 768.0 * r.powi(3))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -72,3 +72,17 @@ fn extruded_disk(
         .collect();
     TetMesh::new(positions, lattice.tets())
 }
+
+/// The vertex and tet counts of [`cylinder`] (or, if `puck`, of [`puck`]), without
+/// generating it; NaN for parameters the generator refuses.
+pub fn cylinder_counts(radius: f64, height: f64, res: usize, puck: bool) -> (f64, f64) {
+    let r = res as f64;
+    let mut layers = (r * height / radius).round().max(1.0);
+    if puck {
+        layers = layers.max(r);
+    }
+    (
+        (2.0 * r + 1.0).powi(2) * (layers + 1.0),
+        24.0 * r * r * layers,
+    )
+}

@@ -109,6 +109,16 @@ pub fn finger(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     Ok((carved.mesh, PhysicalGroups::new(groups)))
 }
 
+/// The vertex (of the uncarved grid: an upper bound) and tet counts of [`finger`] at `res`,
+/// without generating it.
+pub fn finger_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    (
+        (20.0 * r + 1.0) * (3.0 * r + 1.0) * (5.0 * r + 1.0),
+        1494.0 * r.powi(3),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

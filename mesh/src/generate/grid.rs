@@ -76,6 +76,13 @@ pub(super) fn lined_grid_flipped(
     (positions, lattice.tets_flipped(flip))
 }
 
+/// The vertex and tet counts of [`box_grid`] with `cells` per axis, without generating it
+/// (in `f64`, so that a scene's product of cells and resolution cannot wrap).
+pub fn box_grid_counts(cells: [f64; 3]) -> (f64, f64) {
+    let vertices = cells.iter().map(|c| c + 1.0).product();
+    (vertices, 6.0 * cells.iter().product::<f64>())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

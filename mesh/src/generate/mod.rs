@@ -22,6 +22,10 @@
 //! | [`torso`] `res` | `2016 res^3` (res 2: 16,128; a torso on the tops of two legs, mapped like the cylinder) | 0.040 at res 1, 0.033 at res 2 |
 //! | [`creature`] `res` | `942 res^3` (res 2: 7,536; a torso on four legs, a neck, a head) | 0.19 |
 //!
+//! Each generator also gives its vertex and tet counts without generating (`NAME_counts`, in
+//! `f64`), so that a scene's memory is checked before anything is allocated; the tet counts
+//! are exact, the vertex counts exact or (for the carved grids) the uncarved grid's.
+//!
 //! The curved generators also give their true surface for
 //! [`crate::ElementMesh::quadratic_on_surface`]: [`cylinder_surface`] (cylinder and puck),
 //! [`tube_surface`] and [`ball_surface`] place the mid-edge node of a boundary edge whose
@@ -42,16 +46,16 @@ mod spine;
 mod torso;
 mod tube;
 
-pub use ball::{ball, ball_surface};
-pub use bubble::{bubble, BUBBLE_SIZE};
-pub use creature::{creature, CREATURE_SIZE};
-pub use cushion::{cushion, CUSHION_SIZE};
-pub use cylinder::{cylinder, cylinder_surface, puck};
-pub use finger::{finger, FINGER_SIZE};
-pub use grid::box_grid;
-pub use spine::{spine_arm, SPINE_SIZE};
-pub use torso::{torso, TORSO_CROTCH, TORSO_HEIGHT, TORSO_WAIST};
-pub use tube::{tube, tube_surface, TubeMesh};
+pub use ball::{ball, ball_counts, ball_surface};
+pub use bubble::{bubble, bubble_counts, BUBBLE_SIZE};
+pub use creature::{creature, creature_counts, CREATURE_SIZE};
+pub use cushion::{cushion, cushion_counts, CUSHION_SIZE};
+pub use cylinder::{cylinder, cylinder_counts, cylinder_surface, puck};
+pub use finger::{finger, finger_counts, FINGER_SIZE};
+pub use grid::{box_grid, box_grid_counts};
+pub use spine::{spine_arm, spine_arm_counts, SPINE_SIZE};
+pub use torso::{torso, torso_counts, TORSO_CROTCH, TORSO_HEIGHT, TORSO_WAIST};
+pub use tube::{tube, tube_counts, tube_surface, TubeMesh};
 
 use crate::{MeshError, Vec3};
 
@@ -193,5 +197,46 @@ pub(crate) mod tests {
             (enclosed + chamber).abs() < 1e-12 * chamber,
             "chamber encloses {enclosed}, expected -{chamber}"
         );
+    }
+
+    /// Each generator's counts, computed without generating, are its mesh's: the tets
+    /// exactly, the vertices exactly or (the carved grids) from above by the removed cells'.
+    #[test]
+    fn counts_are_those_of_the_generated_meshes() {
+        use super::*;
+        let exact = |(v, t): (f64, f64), mesh: &TetMesh| {
+            assert_eq!((v, t), (mesh.num_vertices() as f64, mesh.num_tets() as f64));
+        };
+        let bound = |(v, t): (f64, f64), mesh: &TetMesh| {
+            let n = mesh.num_vertices() as f64;
+            assert_eq!(t, mesh.num_tets() as f64);
+            assert!(v >= n && v <= 1.3 * n, "{v} for {n} vertices");
+        };
+        let corner = crate::Vec3::new(1.0, 2.0, 0.5);
+        exact(
+            box_grid_counts([3.0, 2.0, 1.0]),
+            &box_grid(crate::Vec3::zeros(), corner, [3, 2, 1]).unwrap(),
+        );
+        for res in [1, 2] {
+            exact(
+                cylinder_counts(0.5, 1.3, res, false),
+                &cylinder(0.5, 1.3, res).unwrap(),
+            );
+            exact(
+                cylinder_counts(0.5, 0.2, res, true),
+                &puck(0.5, 0.2, res).unwrap(),
+            );
+            exact(
+                tube_counts(0.8, 1.0, 0.5, res),
+                &tube(0.8, 1.0, 0.5, res).unwrap().mesh,
+            );
+            exact(ball_counts(res), &ball(1.0, res).unwrap());
+            exact(creature_counts(res), &creature(res).unwrap().0);
+            bound(spine_arm_counts(res), &spine_arm(res).unwrap().0);
+            bound(cushion_counts(res), &cushion(res).unwrap().0);
+            bound(bubble_counts(res), &bubble(res).unwrap().0);
+            bound(finger_counts(res), &finger(res).unwrap().0);
+            bound(torso_counts(res), &torso(res).unwrap().0);
+        }
     }
 }

@@ -46,6 +46,16 @@ pub fn spine_arm(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     Ok((carved.mesh, PhysicalGroups::new(groups)))
 }
 
+/// The vertex (of the grid before the holes: an upper bound) and tet counts of
+/// [`spine_arm`] at `res`, without generating it.
+pub fn spine_arm_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    (
+        (25.0 * r + 1.0) * (3.0 * r + 1.0).powi(2),
+        1260.0 * r.powi(3),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

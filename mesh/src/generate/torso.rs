@@ -202,6 +202,16 @@ pub fn torso(res: usize) -> Result<(TetMesh, PhysicalGroups), MeshError> {
     Ok((mesh, PhysicalGroups::new(groups)))
 }
 
+/// The vertex (of the uncarved grid: an upper bound) and tet counts of [`torso`] at `res`,
+/// without generating it.
+pub fn torso_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    (
+        (8.0 * r + 1.0) * (4.0 * r + 1.0) * (11.0 * r + 1.0),
+        2016.0 * r.powi(3),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

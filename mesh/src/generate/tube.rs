@@ -100,3 +100,14 @@ pub fn tube_surface(
             .or_else(|| Wall::Cylinder(outer_radius).midpoint(a, b))
     }
 }
+
+/// The vertex and tet counts of [`tube`], without generating it; NaN for parameters the
+/// generator refuses.
+pub fn tube_counts(inner_radius: f64, outer_radius: f64, height: f64, res: usize) -> (f64, f64) {
+    let round = |x: f64| x.round().max(1.0);
+    let r = res as f64;
+    let h = (outer_radius - inner_radius) / r;
+    let around = round(PI * (inner_radius + outer_radius) / h).max(6.0);
+    let along = round(height / h);
+    ((r + 1.0) * around * (along + 1.0), 6.0 * r * around * along)
+}

@@ -146,96 +146,15 @@ fn scene_counts(scene: &Scene) -> Option<(f64, f64, Option<f64>)> {
     Some(total)
 }
 
-/// Vertices, tets and (for a file) nodes of a mesh, from its parameters or a file's header.
+/// Vertices, tets and (for a file) nodes of a mesh, from its generator's counts
+/// ([`MeshSpec::counts`]) or a file's header.
 fn mesh_counts(spec: &MeshSpec) -> Option<(f64, f64, Option<f64>)> {
-    let round = |x: f64| x.round().max(1.0);
     let (vertices, tets) = match spec {
-        MeshSpec::Box { res, cells, .. } => {
-            let n = cells.map(|c| c as f64 * *res as f64);
-            let vertices = n.iter().map(|c| c + 1.0).product();
-            (vertices, 6.0 * n.iter().product::<f64>())
-        }
-        MeshSpec::Cylinder {
-            radius,
-            height,
-            res,
-        }
-        | MeshSpec::Puck {
-            radius,
-            height,
-            res,
-        } => {
-            let r = *res as f64;
-            let mut layers = round(r * height / radius);
-            if matches!(spec, MeshSpec::Puck { .. }) {
-                layers = layers.max(r);
-            }
-            (
-                (2.0 * r + 1.0).powi(2) * (layers + 1.0),
-                24.0 * r * r * layers,
-            )
-        }
-        MeshSpec::Tube {
-            inner_radius,
-            outer_radius,
-            height,
-            res,
-        } => {
-            let r = *res as f64;
-            let h = (outer_radius - inner_radius) / r;
-            let around = round(std::f64::consts::PI * (inner_radius + outer_radius) / h).max(6.0);
-            let along = round(height / h);
-            ((r + 1.0) * around * (along + 1.0), 6.0 * r * around * along)
-        }
-        MeshSpec::Ball { res, .. } => {
-            let r = *res as f64;
-            ((2.0 * r + 1.0).powi(3), 48.0 * r.powi(3))
-        }
-        MeshSpec::Spine { res } => {
-            let r = *res as f64;
-            (
-                (25.0 * r + 1.0) * (3.0 * r + 1.0).powi(2),
-                1260.0 * r.powi(3),
-            )
-        }
-        // The vertices of the uncarved grid: at most a few percent more.
-        MeshSpec::Cushion { res } => {
-            let r = *res as f64;
-            ((6.0 * r + 1.0).powi(2) * (4.0 * r + 1.0), 768.0 * r.powi(3))
-        }
-        MeshSpec::Bubble { res } => {
-            let r = *res as f64;
-            ((6.0 * r + 1.0).powi(2) * (3.0 * r + 1.0), 552.0 * r.powi(3))
-        }
-        MeshSpec::Finger { res } => {
-            let r = *res as f64;
-            (
-                (20.0 * r + 1.0) * (3.0 * r + 1.0) * (5.0 * r + 1.0),
-                1494.0 * r.powi(3),
-            )
-        }
-        MeshSpec::Torso { res } => {
-            let r = *res as f64;
-            (
-                (8.0 * r + 1.0) * (4.0 * r + 1.0) * (11.0 * r + 1.0),
-                2016.0 * r.powi(3),
-            )
-        }
-        // Exact: the torso's grid, the legs' and neck's without the layers they share with
-        // the torso and head, the head's.
-        MeshSpec::Creature { res } => {
-            let r = *res as f64;
-            let torso = (8.0 * r + 1.0) * (5.0 * r + 1.0) * (3.0 * r + 1.0);
-            let legs = 4.0 * (2.0 * r + 1.0) * (r + 1.0) * 2.0 * r;
-            let neck = (3.0 * r - 1.0) * (r + 1.0).powi(2);
-            let head = (2.0 * r + 1.0) * (3.0 * r + 1.0).powi(2);
-            (torso + legs + neck + head, 942.0 * r.powi(3))
-        }
-        MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
         MeshSpec::File { path } => {
             let (nodes, elements) = file_counts(path)?;
             return Some((nodes, elements, Some(nodes)));
         }
+        generator => generator.counts()?,
     };
     // Invalid parameters (a negative radius, ...) give NaN here: the generator says why.
     (vertices.is_finite() && tets.is_finite()).then_some((vertices, tets, None))

@@ -2,6 +2,8 @@
 
 use super::common::one;
 use super::common::Vector;
+use isochor_mesh::io::PhysicalGroups;
+use isochor_mesh::{generate, MeshError, TetMesh, Vec3};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
@@ -119,6 +121,152 @@ pub enum MeshSpec {
         /// The file.
         path: PathBuf,
     },
+}
+
+/// The true surface of a curved generator: the mid-edge node of a boundary edge on a curved
+/// wall (see `isochor_mesh::generate::cylinder_surface`).
+pub type Surface = Box<dyn Fn(&Vec3, &Vec3) -> Option<Vec3>>;
+
+/// A generated mesh: its tets, the groups the generator names, its true surface if curved.
+pub struct Generated {
+    /// The 4-node mesh.
+    pub mesh: TetMesh,
+    /// The named groups of faces, for the generators that name some.
+    pub groups: Option<PhysicalGroups>,
+    /// The curved surface 10-node tets follow.
+    pub surface: Option<Surface>,
+}
+
+impl Generated {
+    fn plain(mesh: TetMesh) -> Generated {
+        Generated {
+            mesh,
+            groups: None,
+            surface: None,
+        }
+    }
+
+    fn curved(mesh: TetMesh, surface: Surface) -> Generated {
+        Generated {
+            mesh,
+            groups: None,
+            surface: Some(surface),
+        }
+    }
+
+    fn grouped((mesh, groups): (TetMesh, PhysicalGroups)) -> Generated {
+        Generated {
+            mesh,
+            groups: Some(groups),
+            surface: None,
+        }
+    }
+}
+
+impl MeshSpec {
+    /// The mesh of a generator (or of explicit vertices and tets); a mesh file is read, not
+    /// generated (an error here).
+    pub fn generate(&self) -> Result<Generated, MeshError> {
+        match self {
+            MeshSpec::Box {
+                min,
+                max,
+                res,
+                cells,
+                ..
+            } => generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))
+                .map(Generated::plain),
+            MeshSpec::Cylinder {
+                radius,
+                height,
+                res,
+            } => generate::cylinder(*radius, *height, *res)
+                .map(|m| Generated::curved(m, Box::new(generate::cylinder_surface(*radius)))),
+            MeshSpec::Puck {
+                radius,
+                height,
+                res,
+            } => generate::puck(*radius, *height, *res)
+                .map(|m| Generated::curved(m, Box::new(generate::cylinder_surface(*radius)))),
+            MeshSpec::Tube {
+                inner_radius,
+                outer_radius,
+                height,
+                res,
+            } => generate::tube(*inner_radius, *outer_radius, *height, *res).map(|t| {
+                let surface = generate::tube_surface(*inner_radius, *outer_radius);
+                Generated::curved(t.mesh, Box::new(surface))
+            }),
+            MeshSpec::Ball {
+                radius,
+                res,
+                center,
+            } => generate::ball(*radius, *res).and_then(|ball| {
+                let c = vec3(*center);
+                let moved = ball.positions().iter().map(|x| x + c).collect();
+                let sphere = generate::ball_surface(*radius);
+                Ok(Generated::curved(
+                    TetMesh::new(moved, ball.tets().to_vec())?,
+                    Box::new(move |a: &Vec3, b: &Vec3| sphere(&(a - c), &(b - c)).map(|p| p + c)),
+                ))
+            }),
+            MeshSpec::Spine { res } => generate::spine_arm(*res).map(Generated::grouped),
+            MeshSpec::Cushion { res } => generate::cushion(*res).map(Generated::grouped),
+            MeshSpec::Bubble { res } => generate::bubble(*res).map(Generated::grouped),
+            MeshSpec::Finger { res } => generate::finger(*res).map(Generated::grouped),
+            MeshSpec::Torso { res } => generate::torso(*res).map(Generated::grouped),
+            MeshSpec::Creature { res } => generate::creature(*res).map(Generated::grouped),
+            MeshSpec::Explicit { positions, tets } => {
+                TetMesh::new(positions.iter().map(|p| vec3(*p)).collect(), tets.clone())
+                    .map(Generated::plain)
+            }
+            MeshSpec::File { path } => Err(MeshError::parameter(
+                "generator",
+                format!("file ({})", path.display()),
+                "a mesh file is read, not generated",
+            )),
+        }
+    }
+
+    /// The vertex and tet counts of [`MeshSpec::generate`]'s mesh, from the generator's
+    /// formula without generating (NaN for parameters the generator refuses); `None` for a
+    /// mesh file.
+    pub fn counts(&self) -> Option<(f64, f64)> {
+        Some(match self {
+            MeshSpec::Box { res, cells, .. } => {
+                generate::box_grid_counts(cells.map(|c| c as f64 * *res as f64))
+            }
+            MeshSpec::Cylinder {
+                radius,
+                height,
+                res,
+            } => generate::cylinder_counts(*radius, *height, *res, false),
+            MeshSpec::Puck {
+                radius,
+                height,
+                res,
+            } => generate::cylinder_counts(*radius, *height, *res, true),
+            MeshSpec::Tube {
+                inner_radius,
+                outer_radius,
+                height,
+                res,
+            } => generate::tube_counts(*inner_radius, *outer_radius, *height, *res),
+            MeshSpec::Ball { res, .. } => generate::ball_counts(*res),
+            MeshSpec::Spine { res } => generate::spine_arm_counts(*res),
+            MeshSpec::Cushion { res } => generate::cushion_counts(*res),
+            MeshSpec::Bubble { res } => generate::bubble_counts(*res),
+            MeshSpec::Finger { res } => generate::finger_counts(*res),
+            MeshSpec::Torso { res } => generate::torso_counts(*res),
+            MeshSpec::Creature { res } => generate::creature_counts(*res),
+            MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
+            MeshSpec::File { .. } => return None,
+        })
+    }
+}
+
+fn vec3(a: [f64; 3]) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
 }
 
 fn ones() -> [usize; 3] {

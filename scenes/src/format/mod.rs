@@ -38,8 +38,10 @@ pub use bodies::{BodyRef, BodySpec, PlacementSpec, RotationSpec, SCENE_BODY};
 pub use common::Vector;
 pub use conditions::{CurveSpec, DirichletSpec, LoadsSpec, MotionSpec, PressureSpec, TractionSpec};
 pub use load::{load_scene, SceneSource};
-pub use material::{rename_aliases, MaterialSpec, RegionSpec, MATERIAL_ALIASES};
-pub use mesh::MeshSpec;
+pub use material::{
+    material_keys, rename_aliases, ConstantSpec, MaterialSpec, RegionSpec, MATERIAL_ALIASES,
+};
+pub use mesh::{Generated, MeshSpec, Surface};
 pub use names::{
     ComponentName, ElementName, EnergyName, KappaName, LengthUnit, LinearName, MethodName,
     ModelName, OrderingName, PointsName, PreconditionerName, PreviewField, Reduce, UnknownName,

@@ -3,7 +3,7 @@
 
 use isochor_mesh::element::TetElement;
 use isochor_mesh::io::VtuEncoding;
-use isochor_solvers::Method;
+use isochor_solvers::{MaterialModel, Method, ModelInfo};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::str::FromStr;
@@ -156,21 +156,50 @@ macro_rules! newtype_serde {
 newtype_serde!(MethodName);
 newtype_serde!(ElementName);
 
-names! {
-    /// `material.model` (see `isochor_solvers::MaterialModel`).
-    pub enum ModelName {
-        /// Neo-Hookean in each method's form.
-        NeoHookean = "neo-hookean",
-        /// Uncoupled Mooney-Rivlin (`c10`, `c01`).
-        MooneyRivlin = "mooney-rivlin",
-        /// Yeoh (`c10`, `c20`, `c30`).
-        Yeoh = "yeoh",
-        /// Uncoupled Ogden (`ogden` terms).
-        Ogden = "ogden",
-        /// Stable neo-Hookean (`young` or `mu`).
-        StableNeoHookean = "stable-neo-hookean",
-        /// Isochoric neo-Hookean of Bonet and Wood (`young` or `mu`).
-        BonetWood = "bonet-wood",
+/// `material.model`: a model of the solver's catalogue ([`MaterialModel::ALL`]), parsed by
+/// its name.
+#[derive(Debug, Clone, Copy)]
+pub struct ModelName(pub &'static ModelInfo);
+
+impl ModelName {
+    /// The default model, `neo-hookean`.
+    pub fn neo_hookean() -> ModelName {
+        ModelName(&MaterialModel::ALL[0])
+    }
+
+    /// The name as scenes write it.
+    pub fn name(self) -> &'static str {
+        self.0.name
+    }
+}
+
+impl PartialEq for ModelName {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.name == other.0.name
+    }
+}
+
+impl Eq for ModelName {}
+
+impl FromStr for ModelName {
+    type Err = UnknownName;
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
+        MaterialModel::info(s).map(ModelName).ok_or(UnknownName {
+            given: s.to_string(),
+            valid: MaterialModel::NAMES,
+        })
+    }
+}
+
+impl Serialize for ModelName {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for ModelName {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        deserialize_name(d)
     }
 }
 
@@ -396,9 +425,10 @@ mod tests {
 
     #[test]
     fn every_name_parses_back() {
-        for m in ModelName::ALL {
-            assert_eq!(m.name().parse::<ModelName>(), Ok(*m));
+        for name in MaterialModel::NAMES {
+            assert_eq!(name.parse::<ModelName>().map(ModelName::name), Ok(*name));
         }
+        assert_eq!(ModelName::neo_hookean().name(), "neo-hookean");
         let e = "inch".parse::<LengthUnit>().unwrap_err().to_string();
         assert_eq!(e, "unknown value `inch`, expected one of `m`, `cm`, `mm`");
         let e = "x".parse::<KappaName>().unwrap_err().to_string();

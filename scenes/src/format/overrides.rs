@@ -11,9 +11,12 @@
 
 use super::material::{rename_aliases, MATERIAL_ALIASES};
 use crate::error::SceneError;
+use isochor_solvers::MaterialModel;
 use toml::Value;
 
-/// Flat parameter names and the dotted keys they set.
+/// Flat parameter names and the dotted keys they set; every material model's constants
+/// (`c10`, ..., `ogden`, from the solver's catalogue) are flat names of `material.KEY` too
+/// ([`flat_keys`]).
 pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("method", "method"),
     ("element", "element"),
@@ -22,11 +25,6 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("young", "material.young"),
     ("mu", "material.mu"),
     ("model", "material.model"),
-    ("c10", "material.c10"),
-    ("c01", "material.c01"),
-    ("c20", "material.c20"),
-    ("c30", "material.c30"),
-    ("ogden", "material.ogden"),
     ("rho", "material.rho"),
     ("density", "material.rho"),
     ("zonal_penalty", "material.zonal_penalty"),
@@ -136,9 +134,22 @@ pub fn check_key_syntax(key: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// Every flat parameter name and the dotted key it sets: [`FLAT_KEYS`] and the constants of
+/// every material model.
+pub fn flat_keys() -> Vec<(&'static str, String)> {
+    let constants = MaterialModel::constant_keys()
+        .into_iter()
+        .map(|k| (k, format!("material.{k}")));
+    FLAT_KEYS
+        .iter()
+        .map(|&(k, path)| (k, path.to_string()))
+        .chain(constants)
+        .collect()
+}
+
 /// The flat parameter names, for error messages.
 pub fn flat_names() -> Vec<&'static str> {
-    let mut names: Vec<&str> = FLAT_KEYS.iter().map(|(n, _)| *n).collect();
+    let mut names: Vec<&str> = flat_keys().iter().map(|(n, _)| *n).collect();
     names.push("mesh");
     names.push("res");
     names.sort_unstable();
@@ -224,23 +235,23 @@ fn target(o: &Override) -> String {
 pub fn dotted(key: &str) -> String {
     match key {
         "res" => "mesh.res".into(),
-        key => FLAT_KEYS
-            .iter()
+        key => flat_keys()
+            .into_iter()
             .find(|(name, _)| *name == key)
-            .map_or(key, |(_, path)| path)
-            .to_string(),
+            .map_or(key.to_string(), |(_, path)| path),
     }
 }
 
 /// The alternative ways of giving a material's stiffness: Young's modulus, the shear
 /// modulus, or the constants of a model (which go together).
-const STIFFNESS_GROUPS: [&[&str]; 3] =
-    [&["young"], &["mu"], &["c10", "c01", "c20", "c30", "ogden"]];
+fn stiffness_groups() -> [Vec<&'static str>; 3] {
+    [vec!["young"], vec!["mu"], MaterialModel::constant_keys()]
+}
 
 /// The stiffness group of a dotted key, if it is one of the material's stiffness keys.
 fn stiffness_group(key: &str) -> Option<usize> {
     let key = key.strip_prefix("material.")?;
-    STIFFNESS_GROUPS.iter().position(|g| g.contains(&key))
+    stiffness_groups().iter().position(|g| g.contains(&key))
 }
 
 fn stiffness(key: &str) -> bool {
@@ -299,7 +310,7 @@ pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
     // one drops the others.
     if let Some(group) = stiffness_group(&path) {
         if let Some(Value::Table(m)) = root(tree)?.get_mut("material") {
-            for (g, keys) in STIFFNESS_GROUPS.iter().enumerate() {
+            for (g, keys) in stiffness_groups().iter().enumerate() {
                 if g != group {
                     keys.iter().for_each(|k| {
                         m.remove(*k);
@@ -328,8 +339,8 @@ fn resolve(tree: &Value, key: &str) -> Result<String, String> {
     if key.contains('.') {
         return Ok(key.to_string());
     }
-    if let Some((_, path)) = FLAT_KEYS.iter().find(|(n, _)| *n == key) {
-        return Ok(path.to_string());
+    if let Some((_, path)) = flat_keys().into_iter().find(|(n, _)| *n == key) {
+        return Ok(path);
     }
     if let Some(mesh) = tree.get("mesh").and_then(Value::as_table) {
         if mesh.contains_key(key) && key != "generator" {

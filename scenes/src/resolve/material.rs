@@ -5,7 +5,9 @@ use super::selections::Selections;
 use crate::error::SceneError;
 use crate::format::{rename_aliases, KappaName, MaterialSpec, ModelName, Scene, ZonalEnergyName};
 use isochor_energies::ParameterError;
-use isochor_solvers::{Epidermis, Kappa, Material, MaterialModel, Region, ZonalEnergy};
+use isochor_solvers::{
+    ConstantKind, Epidermis, Kappa, Material, MaterialModel, Method, Region, ZonalEnergy,
+};
 
 /// The regions of the scene, each the tets of its selection with its material; then each
 /// body whose material differs from `[material]`, less the tets a region claims.
@@ -24,8 +26,10 @@ pub fn regions(
                 elements: selections.tets(&r.selection)?.to_vec(),
                 material: region_material(
                     &scene.material,
+                    &r.name,
                     &r.material,
                     format!("regions.{i}.material"),
+                    scene.method(),
                 )?,
             })
         })
@@ -41,7 +45,7 @@ pub fn regions(
             continue;
         };
         let origin = format!("bodies.{}.material", i - own);
-        let material = region_material(&scene.material, table, origin)?;
+        let material = region_material(&scene.material, body.name, table, origin, scene.method())?;
         let elements: Vec<usize> = part.elements.clone().filter(|&e| !claimed[e]).collect();
         if !elements.is_empty() {
             regions.push(Region {
@@ -61,15 +65,22 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
         key: "material".into(),
         message,
     };
-    let model = material_model(spec).map_err(invalid)?;
-    model.validate().map_err(|e| match model {
-        // The terms are one key; the error names the term's parameter.
-        MaterialModel::Ogden { .. } => SceneError::Invalid {
-            origin: "scene".into(),
-            key: "material.ogden".into(),
-            message: e.to_string(),
-        },
-        _ => e.into(),
+    let info = spec.model.unwrap_or_else(ModelName::neo_hookean).0;
+    let model = info
+        .make(spec.constants.iter().map(|(k, v)| (k.as_str(), v.into())))
+        .map_err(|e| invalid(e.to_string()))?;
+    model.validate().map_err(|e| {
+        // A list of terms is one key; the error names the term's parameter (`mu_p`).
+        match info.constants.iter().find(|c| {
+            matches!(c.kind, ConstantKind::Pairs { first, second } if [first, second].contains(&e.name))
+        }) {
+            Some(terms) => SceneError::Invalid {
+                origin: "scene".into(),
+                key: format!("material.{}", terms.key),
+                message: e.to_string(),
+            },
+            None => e.into(),
+        }
     })?;
     let young = match (spec.young, spec.mu, model.shear_modulus()) {
         (None, None, Some(mu)) => 2.0 * mu * (1.0 + spec.nu),
@@ -79,7 +90,10 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
                 model.name()
             )))
         }
-        (Some(e), _, None) => e,
+        (Some(_), Some(_), None) => {
+            return Err(invalid("give either young or mu, not both".into()))
+        }
+        (Some(e), None, None) => e,
         (None, Some(mu), None) => {
             // Checked as given, not as the Young's modulus it implies, so the error names mu.
             if !(mu.is_finite() && mu > 0.0) {
@@ -142,82 +156,59 @@ pub fn build_material(spec: &MaterialSpec) -> Result<Material, SceneError> {
     Ok(m)
 }
 
-/// The model of a `[material]` table, its constants checked against the model.
-fn material_model(spec: &MaterialSpec) -> Result<MaterialModel, String> {
-    let name = spec.model.unwrap_or(ModelName::NeoHookean);
-    let given: Vec<&str> = [
-        ("c10", spec.c10.is_some()),
-        ("c01", spec.c01.is_some()),
-        ("c20", spec.c20.is_some()),
-        ("c30", spec.c30.is_some()),
-        ("ogden", spec.ogden.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(key, set)| set.then_some(key))
-    .collect();
-    let allowed: &[&str] = match name {
-        ModelName::MooneyRivlin => &["c10", "c01"],
-        ModelName::Yeoh => &["c10", "c20", "c30"],
-        ModelName::Ogden => &["ogden"],
-        _ => &[],
-    };
-    if let Some(key) = given.iter().find(|k| !allowed.contains(k)) {
-        return Err(format!(
-            "{key} is not a constant of model {} (its constants: {})",
-            name.name(),
-            if allowed.is_empty() {
-                "none; give young or mu".to_string()
-            } else {
-                allowed.join(", ")
-            }
-        ));
-    }
-    let required = |key: &str, value: Option<f64>| {
-        value.ok_or_else(|| format!("model {} needs {key}", name.name()))
-    };
-    Ok(match name {
-        ModelName::NeoHookean => MaterialModel::NeoHookean,
-        ModelName::StableNeoHookean => MaterialModel::StableNeoHookean,
-        ModelName::BonetWood => MaterialModel::BonetWood,
-        ModelName::MooneyRivlin => MaterialModel::MooneyRivlin {
-            c10: required("c10", spec.c10)?,
-            c01: spec.c01.unwrap_or(0.0),
-        },
-        ModelName::Yeoh => MaterialModel::Yeoh {
-            c10: required("c10", spec.c10)?,
-            c20: spec.c20.unwrap_or(0.0),
-            c30: spec.c30.unwrap_or(0.0),
-        },
-        ModelName::Ogden => MaterialModel::Ogden {
-            terms: spec
-                .ogden
-                .as_ref()
-                .ok_or_else(|| "model ogden needs ogden = [[mu_p, alpha_p], ...]".to_string())?
-                .iter()
-                .map(|&[mu, alpha]| (mu, alpha))
-                .collect(),
-        },
-    })
-}
+/// Keys of a region's material that only the `zonal` method reads.
+const ZONAL_KEYS: [&str; 5] = ["zonal_penalty", "lambda", "beta", "epsilon", "zonal_energy"];
 
-/// The material of a region or body (its keys at `origin`): the scene's `[material]` keys
-/// overlaid with its own.
+/// Keys of `[material]` that hold for the whole body, read from the body's material only.
+const BODY_KEYS: [&str; 5] = [
+    "dual_base_nu",
+    "epidermis",
+    "epidermis_young",
+    "epidermis_nu",
+    "epidermis_gamma",
+];
+
+/// The material of region or body `name` (its keys at `origin`): the scene's `[material]`
+/// keys overlaid with its own. One that gives any stiffness key (`young`, `mu`, a model's
+/// constants) replaces all of the scene's; a key it cannot use under `method` is an error
+/// naming it.
 fn region_material(
     body: &MaterialSpec,
+    name: &str,
     overrides: &toml::Table,
     origin: String,
+    method: Method,
 ) -> Result<Material, SceneError> {
     let invalid = |key: String, message: String| SceneError::Invalid {
         origin: "scene".into(),
         key,
         message,
     };
+    if overrides.contains_key("young") && overrides.contains_key("mu") {
+        return Err(invalid(
+            origin,
+            format!("region '{name}': give either young or mu, not both"),
+        ));
+    }
+    for key in overrides.keys() {
+        let message = if ZONAL_KEYS.contains(&key.as_str()) && method != Method::Zonal {
+            format!(
+                "region '{name}': {key} does nothing under method {}: it is a parameter of the zonal method",
+                method.name()
+            )
+        } else if BODY_KEYS.contains(&key.as_str()) {
+            format!("region '{name}': {key} is a setting of the whole body: give it in [material]")
+        } else {
+            continue;
+        };
+        return Err(invalid(format!("{origin}.{key}"), message));
+    }
     let mut merged =
         toml::Table::try_from(body).map_err(|e| invalid(origin.clone(), e.to_string()))?;
-    // A region that gives any stiffness key replaces all of the body's.
-    const STIFFNESS: [&str; 7] = ["young", "mu", "c10", "c01", "c20", "c30", "ogden"];
-    if STIFFNESS.iter().any(|k| overrides.contains_key(*k)) {
-        for key in STIFFNESS {
+    let mut stiffness = vec!["young", "mu"];
+    stiffness.extend(MaterialModel::constant_keys());
+    if stiffness.iter().any(|k| overrides.contains_key(*k)) {
+        for key in stiffness {
             merged.remove(key);
         }
     }
@@ -226,5 +217,17 @@ fn region_material(
     merged.extend(overrides);
     let spec: MaterialSpec = serde_path_to_error::deserialize(toml::Value::Table(merged))
         .map_err(|e| invalid(format!("{origin}.{}", e.path()), e.inner().to_string()))?;
-    build_material(&spec).map_err(|e| invalid(origin, e.to_string()))
+    let material = build_material(&spec).map_err(|e| invalid(origin.clone(), e.to_string()))?;
+    // The coupled energies need Lame's lambda, which nu = 0.5 does not have.
+    let coupled = method == Method::Standard
+        || (method == Method::Zonal && material.zonal_energy == ZonalEnergy::Standard);
+    if coupled {
+        material.lame().map_err(|e| {
+            invalid(
+                format!("{origin}.{}", e.name),
+                format!("region '{name}': {e} (under method {})", method.name()),
+            )
+        })?;
+    }
+    Ok(material)
 }

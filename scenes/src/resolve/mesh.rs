@@ -1,10 +1,10 @@
 //! A scene's mesh: generated or read, with the named groups of its source, built once.
 
 use crate::error::SceneError;
-use crate::format::MeshSpec;
+use crate::format::{Generated, MeshSpec};
 use isochor_mesh::element::TetElement;
 use isochor_mesh::io::{read_gmsh_with_groups, read_tetgen_with_regions, PhysicalGroups};
-use isochor_mesh::{generate, ElementMesh, TetMesh, Vec3};
+use isochor_mesh::ElementMesh;
 use std::path::Path;
 
 /// A scene's mesh and the named groups its selections may take (`physical`).
@@ -33,97 +33,15 @@ pub fn mesh_with_groups(
     element: TetElement,
     file_groups: bool,
 ) -> Result<SceneMesh, SceneError> {
-    type Surface = Box<dyn Fn(&Vec3, &Vec3) -> Option<Vec3>>;
-    let mut groups = None;
-    let (mesh, surface): (TetMesh, Option<Surface>) = match spec {
-        MeshSpec::Box {
-            min,
-            max,
-            res,
-            cells,
-            ..
-        } => (
-            generate::box_grid(vec3(*min), vec3(*max), cells.map(|c| c * res))?,
-            None,
-        ),
-        MeshSpec::Cylinder {
-            radius,
-            height,
-            res,
-        } => (
-            generate::cylinder(*radius, *height, *res)?,
-            Some(Box::new(generate::cylinder_surface(*radius))),
-        ),
-        MeshSpec::Puck {
-            radius,
-            height,
-            res,
-        } => (
-            generate::puck(*radius, *height, *res)?,
-            Some(Box::new(generate::cylinder_surface(*radius))),
-        ),
-        MeshSpec::Tube {
-            inner_radius,
-            outer_radius,
-            height,
-            res,
-        } => (
-            generate::tube(*inner_radius, *outer_radius, *height, *res)?.mesh,
-            Some(Box::new(generate::tube_surface(
-                *inner_radius,
-                *outer_radius,
-            ))),
-        ),
-        MeshSpec::Spine { .. }
-        | MeshSpec::Cushion { .. }
-        | MeshSpec::Bubble { .. }
-        | MeshSpec::Finger { .. }
-        | MeshSpec::Torso { .. }
-        | MeshSpec::Creature { .. } => {
-            let (mesh, named) = generated_with_groups(spec)?;
-            groups = Some(named);
-            (mesh, None)
-        }
-        MeshSpec::Ball {
-            radius,
-            res,
-            center,
-        } => {
-            let ball = generate::ball(*radius, *res)?;
-            let c = vec3(*center);
-            let moved = ball.positions().iter().map(|x| x + c).collect();
-            let sphere = generate::ball_surface(*radius);
-            (
-                TetMesh::new(moved, ball.tets().to_vec())?,
-                Some(Box::new(move |a: &Vec3, b: &Vec3| {
-                    sphere(&(a - c), &(b - c)).map(|p| p + c)
-                })),
-            )
-        }
-        MeshSpec::Explicit { positions, tets } => (
-            TetMesh::new(positions.iter().map(|p| vec3(*p)).collect(), tets.clone())?,
-            None,
-        ),
-        MeshSpec::File { path } => {
-            let read = read_mesh_file(path)?;
-            let mesh = match (element, read.kind()) {
-                (TetElement::Tet4, TetElement::Tet10) => ElementMesh::linear(read.into_corners()),
-                (TetElement::Tet10, TetElement::Tet4) => {
-                    ElementMesh::quadratic(read.into_corners())
-                }
-                _ => read,
-            };
-            return Ok(SceneMesh {
-                mesh,
-                groups: if file_groups {
-                    file_groups_of(path)?
-                } else {
-                    None
-                },
-                source: format!("the mesh file {}", path.display()),
-            });
-        }
+    let generated = match spec {
+        MeshSpec::File { path } => return file_mesh(path, element, file_groups),
+        generator => generator.generate()?,
     };
+    let Generated {
+        mesh,
+        groups,
+        surface,
+    } = generated;
     let source = if groups.is_some() {
         "a generated mesh with groups"
     } else {
@@ -140,16 +58,23 @@ pub fn mesh_with_groups(
     })
 }
 
-/// A generator that names groups: its mesh and groups, from one generation.
-fn generated_with_groups(spec: &MeshSpec) -> Result<(TetMesh, PhysicalGroups), SceneError> {
-    Ok(match spec {
-        MeshSpec::Spine { res } => generate::spine_arm(*res)?,
-        MeshSpec::Cushion { res } => generate::cushion(*res)?,
-        MeshSpec::Bubble { res } => generate::bubble(*res)?,
-        MeshSpec::Finger { res } => generate::finger(*res)?,
-        MeshSpec::Torso { res } => generate::torso(*res)?,
-        MeshSpec::Creature { res } => generate::creature(*res)?,
-        _ => unreachable!("only the generators that name groups"),
+/// A mesh file's mesh, of `element` (a 10-node file reduced to its corners for `tet4`, a
+/// 4-node one given mid-edge nodes for `tet10`), with its groups when `file_groups`.
+fn file_mesh(path: &Path, element: TetElement, file_groups: bool) -> Result<SceneMesh, SceneError> {
+    let read = read_mesh_file(path)?;
+    let mesh = match (element, read.kind()) {
+        (TetElement::Tet4, TetElement::Tet10) => ElementMesh::linear(read.into_corners()),
+        (TetElement::Tet10, TetElement::Tet4) => ElementMesh::quadratic(read.into_corners()),
+        _ => read,
+    };
+    Ok(SceneMesh {
+        mesh,
+        groups: if file_groups {
+            file_groups_of(path)?
+        } else {
+            None
+        },
+        source: format!("the mesh file {}", path.display()),
     })
 }
 
@@ -207,8 +132,4 @@ pub fn read_mesh_file(path: &Path) -> Result<ElementMesh, SceneError> {
         }
     }
     Ok(isochor_mesh::io::read_mesh_elements(path)?)
-}
-
-fn vec3(a: [f64; 3]) -> Vec3 {
-    Vec3::new(a[0], a[1], a[2])
 }

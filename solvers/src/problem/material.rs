@@ -1,6 +1,7 @@
 //! Material parameters: the hyperelastic model, its moduli and the settings of each method's
 //! volumetric part.
 
+use super::material_model::MaterialModel;
 use isochor_constraints::NodalCompliance;
 use isochor_energies::{bulk_modulus, Lame, ParameterError};
 
@@ -34,91 +35,6 @@ pub struct Epidermis {
     pub poisson: f64,
     /// Steepness `gamma` of the area penalty.
     pub gamma: f64,
-}
-
-/// The hyperelastic model of a material. Under the mixed, condensed, dual and zonal methods
-/// the model's distortional part meets the method's volume constraints or penalty; under
-/// `standard` the model is completed by its own volumetric term (see each variant).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum MaterialModel {
-    /// Neo-Hookean in the form each method uses: standard (eq. 6 of Francu et al. 2021) for
-    /// `standard`, distortional (eq. 32) for the mixed methods, constrained (eq. 12-13 of
-    /// Sheen et al. 2021) for `zonal`. Parameter: `mu`.
-    #[default]
-    NeoHookean,
-    /// Uncoupled Mooney-Rivlin `c10 (Ib1 - 3) + c01 (Ib2 - 3)` on the isochoric invariants
-    /// (FEBio's Mooney-Rivlin): `mu = 2 (c10 + c01)`; `standard` adds `kappa/2 (log J)^2`.
-    MooneyRivlin {
-        /// Coefficient of `Ib1 - 3` (Pa).
-        c10: f64,
-        /// Coefficient of `Ib2 - 3` (Pa).
-        c01: f64,
-    },
-    /// Yeoh `c10 (Ib1 - 3) + c20 (Ib1 - 3)^2 + c30 (Ib1 - 3)^3`: `mu = 2 c10`; `standard` adds
-    /// `kappa/2 (log J)^2`.
-    Yeoh {
-        /// Coefficient of `Ib1 - 3` (Pa).
-        c10: f64,
-        /// Coefficient of `(Ib1 - 3)^2` (Pa).
-        c20: f64,
-        /// Coefficient of `(Ib1 - 3)^3` (Pa).
-        c30: f64,
-    },
-    /// Uncoupled Ogden `sum_p mu_p / alpha_p (lb1^alpha_p + lb2^alpha_p + lb3^alpha_p - 3)` on
-    /// the isochoric principal stretches: `mu = 1/2 sum_p mu_p alpha_p`; `standard` adds
-    /// `kappa/2 (log J)^2`.
-    Ogden {
-        /// The terms `(mu_p, alpha_p)`.
-        terms: Vec<(f64, f64)>,
-    },
-    /// Stable neo-Hookean of Smith et al. 2018, reparametrized to match linear elasticity with
-    /// `(mu, lambda)`; its distortional part (defined for inverted elements too) under the
-    /// constraints. Parameter: `mu`.
-    StableNeoHookean,
-    /// The isochoric neo-Hookean `mu/2 (Ib1 - 3)` of Bonet and Wood (eq. 30 of Francu et al.
-    /// 2021); `standard` adds `kappa/2 (log J)^2`. Parameter: `mu`.
-    BonetWood,
-}
-
-impl MaterialModel {
-    /// The name scenes use (`model = "..."`).
-    pub fn name(&self) -> &'static str {
-        match self {
-            MaterialModel::NeoHookean => "neo-hookean",
-            MaterialModel::MooneyRivlin { .. } => "mooney-rivlin",
-            MaterialModel::Yeoh { .. } => "yeoh",
-            MaterialModel::Ogden { .. } => "ogden",
-            MaterialModel::StableNeoHookean => "stable-neo-hookean",
-            MaterialModel::BonetWood => "bonet-wood",
-        }
-    }
-
-    /// Checks the model's constants (the error names the first bad one).
-    pub fn validate(&self) -> Result<(), ParameterError> {
-        match self {
-            &MaterialModel::MooneyRivlin { c10, c01 } => {
-                isochor_energies::MooneyRivlin::new(c10, c01).map(drop)
-            }
-            &MaterialModel::Yeoh { c10, c20, c30 } => {
-                isochor_energies::Yeoh::new(c10, c20, c30).map(drop)
-            }
-            MaterialModel::Ogden { terms } => isochor_energies::Ogden::new(terms).map(drop),
-            _ => Ok(()),
-        }
-    }
-
-    /// The initial shear modulus the model's constants set, or `None` for the models whose
-    /// parameter is `mu` itself.
-    pub fn shear_modulus(&self) -> Option<f64> {
-        match self {
-            MaterialModel::MooneyRivlin { c10, c01 } => Some(2.0 * (c10 + c01)),
-            MaterialModel::Yeoh { c10, .. } => Some(2.0 * c10),
-            MaterialModel::Ogden { terms } => {
-                Some(0.5 * terms.iter().map(|(m, a)| m * a).sum::<f64>())
-            }
-            _ => None,
-        }
-    }
 }
 
 /// Material parameters shared by every method; each method reads what it needs.

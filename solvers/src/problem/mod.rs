@@ -5,6 +5,7 @@
 pub mod builder;
 pub mod loads;
 pub mod material;
+pub mod material_model;
 pub mod method;
 pub mod obstacle;
 pub mod schedule;
