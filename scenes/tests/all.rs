@@ -9,6 +9,7 @@ mod cli;
 mod compare;
 mod contact;
 mod frames;
+mod outputs;
 mod overrides;
 mod physical;
 mod pneunet;

@@ -19,7 +19,7 @@ use std::path::PathBuf;
 pub(super) fn execute(
     scene: &Scene,
     options: &RunOptions,
-    out: Option<OutputDir>,
+    mut out: Option<OutputDir>,
     resume: Option<RunCheckpoint>,
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
     let ResolvedScene {
@@ -36,6 +36,10 @@ pub(super) fn execute(
         None => None,
     };
     let mut sim = Simulation::new(problem, settings)?;
+    // Only a run that has got this far replaces what an earlier run left.
+    if let Some(dir) = out.as_mut() {
+        dir.start()?;
+    }
     let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids)?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {

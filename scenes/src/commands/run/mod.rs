@@ -20,7 +20,7 @@ pub use resume::resume_run;
 
 use crate::error::SceneError;
 use crate::format::{load_scene, Override, Scene};
-use crate::output::OutputDir;
+use crate::output::{OutputDir, OutputIdentity};
 use crate::record::RunResult;
 use std::path::{Path, PathBuf};
 
@@ -42,7 +42,11 @@ pub fn run_scene(
             "--checkpoint-every must be at least 1".into(),
         ));
     }
-    let out = options.out.as_deref().map(OutputDir::create).transpose()?;
+    let out = options
+        .out
+        .as_deref()
+        .map(|d| OutputDir::prepare(d, OutputIdentity::new("run", &scene.name)))
+        .transpose()?;
     execute::execute(scene, options, out, None)
 }
 
