@@ -5,6 +5,7 @@
 mod actuators;
 mod bounds;
 mod builtin;
+mod checkpoints;
 mod cli;
 mod compare;
 mod contact;

@@ -159,6 +159,7 @@ impl RunCheckpoint {
                 ),
             });
         }
+        checkpoint.check(&path.display().to_string())?;
         Ok(checkpoint)
     }
 }

@@ -12,8 +12,8 @@ use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::RunResult;
 use crate::resolve::{self, ResolvedScene};
-use isochor_solvers::Simulation;
-use std::path::PathBuf;
+use isochor_solvers::{Checkpoint, Simulation};
+use std::path::{Path, PathBuf};
 
 /// Runs `scene` into `out`, from the start or from `resume`.
 pub(super) fn execute(
@@ -43,7 +43,17 @@ pub(super) fn execute(
     let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids)?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {
-        sim.restore((&checkpoint.solver).into())?;
+        let solver: Checkpoint = (&checkpoint.solver).into();
+        sim.check_progress(stepping, &solver.progress)
+            .map_err(|message| SceneError::Invalid {
+                origin: format!(
+                    "the checkpoint in {}",
+                    options.out.as_deref().unwrap_or(Path::new(".")).display()
+                ),
+                key: "solver".into(),
+                message,
+            })?;
+        sim.restore(solver)?;
         observer.resume(checkpoint);
     }
     let outcome = sim.run(stepping, |frame| observer.observe(frame));

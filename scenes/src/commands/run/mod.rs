@@ -14,6 +14,7 @@ mod observer;
 mod options;
 mod records;
 mod resume;
+mod verify;
 
 pub use options::RunOptions;
 pub use resume::resume_run;
