@@ -40,6 +40,12 @@ impl Default for Adaptive {
     }
 }
 
+/// The smallest `Adaptive::min` a run accepts, as a fraction of the run: 30 halvings of the
+/// whole load. Below it a failing step would be halved hundreds of times (each attempt up to
+/// the Newton limit) before its error, for increments that no longer change the load at
+/// double precision near the end of the run.
+pub const MIN_INCREMENT_FLOOR: f64 = 1e-9;
+
 /// Smallest substep of dynamics, as a fraction of the frame's time step: 10 halvings.
 const MIN_SUBSTEP: f64 = 1.0 / 1024.0;
 
