@@ -519,3 +519,86 @@ fn load_curves_with_too_many_corners_are_refused() {
     refused(&o, &["dirichlet.0.curve", "100001 points", "at most 10000"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// What a scene cannot mean is refused naming its key. Before, each was accepted and the
+/// run reported converged: a curve wholly beyond the run's end (its corners never reached),
+/// `gravity_curve` without gravity, a curve on a fixed support, `first_increment` with fixed
+/// stepping (all silently ignored).
+#[test]
+fn keys_that_change_nothing_are_refused() {
+    for (scene, sets, key) in [
+        (
+            "two-tets",
+            &["dirichlet.0.curve=[[2, 0], [3, 1]]"][..],
+            "dirichlet.0.curve",
+        ),
+        (
+            "two-tets",
+            &["loads.gravity_curve=[[0, 0], [1, 1]]"],
+            "loads.gravity_curve",
+        ),
+        (
+            "pressure-cube",
+            &["dirichlet.0.curve=[[0, 0], [1, 1]]"],
+            "dirichlet.0.curve",
+        ),
+        (
+            "two-tets",
+            &["increments=fixed", "first_increment=0.5"],
+            "stepping.first_increment",
+        ),
+        (
+            "two-tets",
+            &["increments=fixed", "min_increment=0.01"],
+            "stepping.min_increment",
+        ),
+    ] {
+        let mut args = vec!["check", scene];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        refused(&isochor(&args), &[key]);
+    }
+}
+
+/// What a user may mean is run, with a warning on stderr and in the summary: a massless
+/// body whose only load is gravity, an obstacle that touches nothing. Before: nothing said
+/// that the run computed all zeros, or that the obstacle never acted.
+#[test]
+fn questionable_runs_warn_on_stderr_and_in_the_summary() {
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "rho=0",
+        "--set",
+        "res=2",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let warning = "material.rho = 0 and gravity is the only load";
+    assert!(
+        summary["warnings"][0].as_str().unwrap().contains(warning),
+        "{summary}"
+    );
+    assert!(stderr(&o).contains(warning), "{}", stderr(&o));
+    let dir = scratch("far-obstacle");
+    let shown = isochor(&["show", "two-tets"]);
+    let scene = format!(
+        "{}\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -10.0]\n",
+        String::from_utf8_lossy(&shown.stdout)
+    );
+    let path = dir.join("far.toml");
+    std::fs::write(&path, scene).unwrap();
+    let o = isochor(&["run", path.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let warning = "obstacles.0 touched nothing";
+    assert!(
+        summary["warnings"][0].as_str().unwrap().contains(warning),
+        "{summary}"
+    );
+    assert!(stderr(&o).contains(warning));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

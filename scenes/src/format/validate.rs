@@ -3,7 +3,7 @@
 //! section, the bounds on steps ([`super::limits`]), and, once the problem is built, supports
 //! that hold a quasi-static body and obstacles clear of the body at the start.
 
-use super::conditions::CurveSpec;
+use super::conditions::{CurveSpec, MotionSpec};
 use super::limits;
 use super::mesh::MeshSpec;
 use super::names::{ZonalEnergyName, ZoneKind};
@@ -267,6 +267,19 @@ fn stepping(scene: &Scene) -> Result<(), Fault> {
                     format!("unknown value '{other}' (valid: adaptive, fixed)"),
                 ));
             }
+            if increments.as_deref() == Some("fixed") {
+                for (key, value) in [
+                    ("stepping.first_increment", first_increment),
+                    ("stepping.min_increment", min_increment),
+                ] {
+                    if value.is_some() {
+                        return Err(fault(
+                            key,
+                            "applies to increments = \"adaptive\" only (fixed stepping takes one solve per frame)",
+                        ));
+                    }
+                }
+            }
             let first = first_increment.unwrap_or(1.0);
             if !(first > 0.0 && first <= 1.0) {
                 return Err(fault(
@@ -381,6 +394,48 @@ fn curves(scene: &Scene) -> Result<(), Fault> {
                     "{} points: at most {MAX_CURVE_POINTS} (each corner inside the run is a solve of its own)",
                     curve.len()
                 ),
+            ));
+        }
+    }
+    let end = match scene.stepping {
+        SteppingSpec::QuasiStatic { .. } => 1.0,
+        SteppingSpec::Dynamic { dt, frames, .. } => dt * frames as f64,
+    };
+    for (key, curve) in &curves {
+        if let [first, _, ..] = curve.as_slice() {
+            if first[0] >= end {
+                return Err(fault(
+                    key.clone(),
+                    format!(
+                        "every point lies at or beyond the run's end ({end}: {}), so the curve \
+                         stays at its first value {} over the whole run",
+                        if scene.is_dynamic() {
+                            "frames * dt, in seconds"
+                        } else {
+                            "the load parameter of a quasi-static run"
+                        },
+                        first[1]
+                    ),
+                ));
+            }
+        }
+    }
+    if scene.loads.gravity_curve.is_some()
+        && scene
+            .loads
+            .gravity
+            .is_none_or(|g| g.iter().all(|&c| c == 0.0))
+    {
+        return Err(fault(
+            "loads.gravity_curve",
+            "the scene has no gravity (loads.gravity is missing or zero) for it to scale",
+        ));
+    }
+    for (i, d) in scene.dirichlet.iter().enumerate() {
+        if d.curve.is_some() && d.motion == MotionSpec::Fixed {
+            return Err(fault(
+                format!("dirichlet.{i}.curve"),
+                "the support is fixed (no motion), so a curve changes nothing: give it a motion",
             ));
         }
     }
@@ -633,4 +688,30 @@ mod tests {
         assert!(check("[selections.a.radial]\nmax = inf\nmin = 0.5").is_ok());
         assert!(check("[selections.a.radial]\nmin = inf").is_err());
     }
+}
+
+/// What a scene asks for that a user may mean but likely does not, as warnings (printed on
+/// stderr and kept in the run's summary): a massless body whose only load is gravity.
+pub fn warnings(scene: &Scene) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let gravity = scene
+        .loads
+        .gravity
+        .is_some_and(|g| g.iter().any(|&c| c != 0.0));
+    let other_loads = !scene.loads.traction.is_empty()
+        || !scene.loads.pressure.is_empty()
+        || !scene.obstacles.is_empty()
+        || scene
+            .dirichlet
+            .iter()
+            .any(|d| d.motion != MotionSpec::Fixed);
+    let massive_region = scene.regions.iter().any(|r| {
+        r.material.get("rho").and_then(Value::as_float) != Some(0.0)
+            && r.material.contains_key("rho")
+    });
+    if gravity && !other_loads && scene.material.rho == 0.0 && !massive_region {
+        warnings
+            .push("material.rho = 0 and gravity is the only load: the body carries no load".into());
+    }
+    warnings
 }

@@ -48,7 +48,11 @@ pub fn run_scene(
         .as_deref()
         .map(|d| OutputDir::prepare(d, OutputIdentity::new("run", &scene.name)))
         .transpose()?;
-    execute::execute(scene, options, out, None)
+    let ran = execute::execute(scene, options, out, None)?;
+    for warning in &ran.0.warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(ran)
 }
 
 /// Runs a scene by name or path with a variant and `--set` overrides (the library entry of
