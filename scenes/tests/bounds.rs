@@ -602,3 +602,23 @@ fn questionable_runs_warn_on_stderr_and_in_the_summary() {
     assert!(stderr(&o).contains(warning));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An invalid obstacle is named by its index. Before: "obstacle: a sphere needs ...", with
+/// no index.
+#[test]
+fn obstacle_errors_name_the_obstacle() {
+    let dir = scratch("obstacle-index");
+    let shown = isochor(&["show", "two-tets"]);
+    let scene = format!(
+        "{}\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -10.0]\n\n\
+         [[obstacles]]\nshape = \"sphere\"\ncenter = [0.0, 0.0, -10.0]\nradius = -1.0\n",
+        String::from_utf8_lossy(&shown.stdout)
+    );
+    let path = dir.join("obstacles.toml");
+    std::fs::write(&path, scene).unwrap();
+    refused(
+        &isochor(&["run", path.to_str().unwrap()]),
+        &["obstacle 1", "sphere"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -40,13 +40,14 @@ fn run_into(out: &Path, extra: &[&str]) -> Output {
 
 /// A second process is refused while another holds the folder's lock, and the output is
 /// untouched. Before: both ran and the folder mixed their frames.
+#[cfg(unix)]
 #[test]
 fn a_run_is_refused_while_another_process_holds_the_folder() {
     let dir = scratch("lock");
     let out = dir.join("out");
     assert!(run_into(&out, &[]).status.success());
     let lock = std::fs::File::create(dir.join(".out.lock")).unwrap();
-    lock.try_lock().unwrap();
+    rustix::fs::flock(&lock, rustix::fs::FlockOperation::NonBlockingLockExclusive).unwrap();
     let o = run_into(&out, &[]);
     assert_eq!(o.status.code(), Some(1));
     let err = stderr(&o);

@@ -1,10 +1,11 @@
-//! One run per output folder at a time: an exclusive OS advisory lock (`flock` on Unix, via
-//! std's `File::try_lock`) on the file `.NAME.lock` beside the folder. The OS releases it
-//! when the run ends or dies, so a held lock means a live run, and a free one means that
-//! whatever temporaries the folder has are a dead run's.
+//! One run per output folder at a time: an exclusive OS advisory lock (`flock(2)`, through
+//! `rustix`) on the file `.NAME.lock` beside the folder. The OS releases it when the run ends
+//! or dies, so a held lock means a live run, and a free one means that whatever temporaries
+//! the folder has are a dead run's. (Where there is no `flock`, outside Unix, nothing is
+//! locked.)
 
 use crate::error::SceneError;
-use std::fs::{File, OpenOptions, TryLockError};
+use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -26,9 +27,9 @@ impl OutputLock {
                 .truncate(false)
                 .open(path)
                 .map_err(|e| unwritable(dest, path, e))?;
-            match file.try_lock() {
-                Ok(()) => {}
-                Err(TryLockError::WouldBlock) => {
+            match try_lock(&file) {
+                Ok(true) => {}
+                Ok(false) => {
                     let holder = std::fs::read_to_string(path).unwrap_or_default();
                     let holder = holder.trim();
                     return Err(SceneError::Output(format!(
@@ -43,7 +44,7 @@ impl OutputLock {
                         path.display()
                     )));
                 }
-                Err(TryLockError::Error(e)) => return Err(SceneError::io(path, e)),
+                Err(e) => return Err(SceneError::io(path, e)),
             }
             // A run that released the lock removes its file first: if `path` is no longer
             // the file locked, lock the one there now.
@@ -71,6 +72,23 @@ impl Drop for OutputLock {
         // Removed while still held, so a run that opened it meanwhile sees it gone.
         let _ = std::fs::remove_file(&self.path);
     }
+}
+
+/// Takes an exclusive lock on `file` without waiting: `false` if another open file holds it.
+#[cfg(unix)]
+fn try_lock(file: &File) -> std::io::Result<bool> {
+    use rustix::fs::{flock, FlockOperation};
+    match flock(file, FlockOperation::NonBlockingLockExclusive) {
+        Ok(()) => Ok(true),
+        Err(e) if e == rustix::io::Errno::WOULDBLOCK => Ok(false),
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// No lock where there is no `flock`.
+#[cfg(not(unix))]
+fn try_lock(_file: &File) -> std::io::Result<bool> {
+    Ok(true)
 }
 
 /// Whether `path` still names the open `file`.
