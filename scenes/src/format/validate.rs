@@ -657,6 +657,32 @@ fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(
     Ok(())
 }
 
+/// What a scene asks for that a user may mean but likely does not, as warnings (printed on
+/// stderr and kept in the run's summary): a massless body whose only load is gravity.
+pub fn warnings(scene: &Scene) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let gravity = scene
+        .loads
+        .gravity
+        .is_some_and(|g| g.iter().any(|&c| c != 0.0));
+    let other_loads = !scene.loads.traction.is_empty()
+        || !scene.loads.pressure.is_empty()
+        || !scene.obstacles.is_empty()
+        || scene
+            .dirichlet
+            .iter()
+            .any(|d| d.motion != MotionSpec::Fixed);
+    let massive_region = scene.regions.iter().any(|r| {
+        r.material.get("rho").and_then(Value::as_float) != Some(0.0)
+            && r.material.contains_key("rho")
+    });
+    if gravity && !other_loads && scene.material.rho == 0.0 && !massive_region {
+        warnings
+            .push("material.rho = 0 and gravity is the only load: the body carries no load".into());
+    }
+    warnings
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -688,30 +714,4 @@ mod tests {
         assert!(check("[selections.a.radial]\nmax = inf\nmin = 0.5").is_ok());
         assert!(check("[selections.a.radial]\nmin = inf").is_err());
     }
-}
-
-/// What a scene asks for that a user may mean but likely does not, as warnings (printed on
-/// stderr and kept in the run's summary): a massless body whose only load is gravity.
-pub fn warnings(scene: &Scene) -> Vec<String> {
-    let mut warnings = Vec::new();
-    let gravity = scene
-        .loads
-        .gravity
-        .is_some_and(|g| g.iter().any(|&c| c != 0.0));
-    let other_loads = !scene.loads.traction.is_empty()
-        || !scene.loads.pressure.is_empty()
-        || !scene.obstacles.is_empty()
-        || scene
-            .dirichlet
-            .iter()
-            .any(|d| d.motion != MotionSpec::Fixed);
-    let massive_region = scene.regions.iter().any(|r| {
-        r.material.get("rho").and_then(Value::as_float) != Some(0.0)
-            && r.material.contains_key("rho")
-    });
-    if gravity && !other_loads && scene.material.rho == 0.0 && !massive_region {
-        warnings
-            .push("material.rho = 0 and gravity is the only load: the body carries no load".into());
-    }
-    warnings
 }
