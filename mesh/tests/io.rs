@@ -831,7 +831,8 @@ fn gmsh_physical_groups_unnamed_and_damaged() {
     assert_eq!(groups.keys().collect::<Vec<_>>(), ["5", "lid"]);
     assert_eq!(groups.get("lid").unwrap().faces, [[0, 1, 2]]);
     assert_eq!(groups.get("5").unwrap().tets, [0]);
-    // An unnamed surface and volume group of the same tag are told apart by dimension.
+    // An unnamed surface and volume group of the same tag are told apart by dimension; the
+    // curve group "x" (dimension 1, no elements read) is listed too.
     let (_, groups) = read_gmsh_with_groups(write(
         "b.msh",
         &v22.replace("2 5 1 1 2 3 4", "2 7 1 1 2 3 4")
@@ -839,7 +840,8 @@ fn gmsh_physical_groups_unnamed_and_damaged() {
             .replace("2 7 \"x\"", "1 7 \"x\""),
     ))
     .unwrap();
-    assert_eq!(groups.keys().collect::<Vec<_>>(), ["2:7", "3:7"]);
+    assert_eq!(groups.keys().collect::<Vec<_>>(), ["2:7", "3:7", "x"]);
+    assert_eq!(groups.get("x").unwrap().dimension, 1);
     // A triangle on a node no tet uses, and an unquoted name, are named at their line.
     let path = write(
         "c.msh",
@@ -854,4 +856,30 @@ fn gmsh_physical_groups_unnamed_and_damaged() {
     assert_eq!(line, 6);
     assert!(m.contains("quoted group name"), "{m}");
     fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `two-groups-v22.msh` and `two-groups-v41.msh` (written by hand) hold one mesh: two tets
+/// of a volume in two physical groups (`soft` and `all`), a boundary triangle in `base` and a
+/// curve group `edge`. Gmsh 2.2 writes each tet once per group; it reads as one tet in both
+/// groups, as in 4.1. Before: the 2.2 file was refused ("face ... is shared by 4 tets"), and
+/// the curve group was not found.
+#[test]
+fn gmsh_22_elements_in_several_groups_read_as_in_41() {
+    let (m22, g22) = read_gmsh_with_groups(data("two-groups-v22.msh")).unwrap();
+    let (m41, g41) = read_gmsh_with_groups(data("two-groups-v41.msh")).unwrap();
+    assert_eq!(m22.num_elements(), 2);
+    assert_eq!(m22.nodes(), m41.nodes());
+    assert_eq!(m22.connectivity(), m41.connectivity());
+    assert_eq!(g22, g41);
+    assert_eq!(
+        g22.keys().collect::<Vec<_>>(),
+        ["all", "base", "edge", "soft"]
+    );
+    for key in ["all", "soft"] {
+        assert_eq!(g22.get(key).unwrap().tets, [0, 1], "{key}");
+    }
+    assert_eq!(g22.get("base").unwrap().faces.len(), 1);
+    let edge = g22.get("edge").unwrap();
+    assert_eq!((edge.dimension, edge.tag), (1, 3));
+    assert!(edge.faces.is_empty() && edge.tets.is_empty());
 }

@@ -137,6 +137,10 @@ pub struct RunResult {
     pub failed_step: Option<usize>,
     /// The `--set` overrides applied, as `KEY=VALUE`.
     pub overrides: Vec<String>,
+    /// What the scene asks for that a user may not mean, and what the run did that the
+    /// result alone does not say (an obstacle that touched nothing); left out when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     /// Per-step records (left out of `--json`; written to the CSV logs).
     #[serde(skip)]
     pub history: Vec<StepRecord>,

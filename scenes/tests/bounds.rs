@@ -430,3 +430,195 @@ fn mesh_errors_name_the_files_own_tags() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A dotted key of 30,000 levels, on the command line or in a scene's variant, is refused.
+/// Before: the nested tables it built overflowed the stack (exit status 134).
+#[test]
+fn keys_nested_beyond_any_scene_key_are_refused() {
+    let deep = vec!["a"; 30_000].join(".");
+    let o = isochor(&["run", "two-tets", "--set", &format!("{deep}=1")]);
+    refused(&o, &["--set a.a.a", "30000 dotted segments", "at most 32"]);
+    let dir = scratch("deep-variant");
+    let shown = isochor(&["show", "two-tets"]);
+    let scene = format!(
+        "{}\n[variants.deep]\n\"{deep}\" = 1\n",
+        String::from_utf8_lossy(&shown.stdout)
+    );
+    let path = dir.join("deep.toml");
+    std::fs::write(&path, scene).unwrap();
+    let o = isochor(&["run", path.to_str().unwrap(), "--variant", "deep"]);
+    refused(&o, &["30000 dotted segments"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Scene and mesh paths that are devices or FIFOs (or links to them) are refused before
+/// they are read. Before: `/dev/zero` aborted on an 8 GiB allocation, `/dev/urandom` was
+/// read for ever and a FIFO blocked without a word.
+#[cfg(unix)]
+#[test]
+fn devices_and_fifos_are_refused_before_reading() {
+    let dir = scratch("devices");
+    let zero = dir.join("zero.msh");
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let o = isochor_in_64_mib(&[
+        "run",
+        "two-tets",
+        "--set",
+        &format!("mesh={}", zero.display()),
+    ]);
+    refused(&o, &["zero.msh", "is a device, not a regular file"]);
+    let random = dir.join("random.toml");
+    std::os::unix::fs::symlink("/dev/urandom", &random).unwrap();
+    let o = isochor(&["run", random.to_str().unwrap()]);
+    refused(&o, &["random.toml", "is a device"]);
+    let fifo = dir.join("pipe.node");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    std::fs::write(dir.join("pipe.ele"), "1 4 0\n1 1 2 3 4\n").unwrap();
+    let o = isochor(&[
+        "run",
+        "two-tets",
+        "--set",
+        &format!("mesh={}", fifo.display()),
+    ]);
+    refused(&o, &["pipe.node", "FIFO"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `min_increment` below the floor of 30 halvings of the run is refused. Before: 1e-300 was
+/// accepted and a failing step halved its increment for ever.
+#[test]
+fn a_min_increment_below_the_floor_is_refused() {
+    let o = isochor(&["run", "two-tets", "--set", "min_increment=1e-300"]);
+    refused(&o, &["stepping.min_increment", "1e-300", "1e-9"]);
+    let o = isochor(&["check", "two-tets", "--set", "min_increment=1e-9"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
+/// A load curve of more than 10,000 points is refused before any solve, naming it. Before:
+/// 100,001 corners made 100,001 solves, and the step limit did not count them.
+#[test]
+fn load_curves_with_too_many_corners_are_refused() {
+    let n = 100_001;
+    let points: Vec<String> = (0..n)
+        .map(|k| {
+            let s = k as f64 / (n - 1) as f64;
+            format!("[{s}, {}]", (k % 2) as f64)
+        })
+        .collect();
+    let shown = isochor(&["show", "two-tets"]);
+    let scene = String::from_utf8_lossy(&shown.stdout).replacen(
+        "[[dirichlet]]\n",
+        &format!("[[dirichlet]]\ncurve = [{}]\n", points.join(", ")),
+        1,
+    );
+    let dir = scratch("corners");
+    let path = dir.join("corners.toml");
+    std::fs::write(&path, scene).unwrap();
+    let o = isochor(&["run", path.to_str().unwrap()]);
+    refused(&o, &["dirichlet.0.curve", "100001 points", "at most 10000"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// What a scene cannot mean is refused naming its key. Before, each was accepted and the
+/// run reported converged: a curve wholly beyond the run's end (its corners never reached),
+/// `gravity_curve` without gravity, a curve on a fixed support, `first_increment` with fixed
+/// stepping (all silently ignored).
+#[test]
+fn keys_that_change_nothing_are_refused() {
+    for (scene, sets, key) in [
+        (
+            "two-tets",
+            &["dirichlet.0.curve=[[2, 0], [3, 1]]"][..],
+            "dirichlet.0.curve",
+        ),
+        (
+            "two-tets",
+            &["loads.gravity_curve=[[0, 0], [1, 1]]"],
+            "loads.gravity_curve",
+        ),
+        (
+            "pressure-cube",
+            &["dirichlet.0.curve=[[0, 0], [1, 1]]"],
+            "dirichlet.0.curve",
+        ),
+        (
+            "two-tets",
+            &["increments=fixed", "first_increment=0.5"],
+            "stepping.first_increment",
+        ),
+        (
+            "two-tets",
+            &["increments=fixed", "min_increment=0.01"],
+            "stepping.min_increment",
+        ),
+    ] {
+        let mut args = vec!["check", scene];
+        for s in sets {
+            args.extend(["--set", s]);
+        }
+        refused(&isochor(&args), &[key]);
+    }
+}
+
+/// What a user may mean is run, with a warning on stderr and in the summary: a massless
+/// body whose only load is gravity, an obstacle that touches nothing. Before: nothing said
+/// that the run computed all zeros, or that the obstacle never acted.
+#[test]
+fn questionable_runs_warn_on_stderr_and_in_the_summary() {
+    let o = isochor(&[
+        "run",
+        "cantilever",
+        "--set",
+        "rho=0",
+        "--set",
+        "res=2",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let warning = "material.rho = 0 and gravity is the only load";
+    assert!(
+        summary["warnings"][0].as_str().unwrap().contains(warning),
+        "{summary}"
+    );
+    assert!(stderr(&o).contains(warning), "{}", stderr(&o));
+    let dir = scratch("far-obstacle");
+    let shown = isochor(&["show", "two-tets"]);
+    let scene = format!(
+        "{}\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -10.0]\n",
+        String::from_utf8_lossy(&shown.stdout)
+    );
+    let path = dir.join("far.toml");
+    std::fs::write(&path, scene).unwrap();
+    let o = isochor(&["run", path.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let warning = "obstacles.0 touched nothing";
+    assert!(
+        summary["warnings"][0].as_str().unwrap().contains(warning),
+        "{summary}"
+    );
+    assert!(stderr(&o).contains(warning));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An invalid obstacle is named by its index. Before: "obstacle: a sphere needs ...", with
+/// no index.
+#[test]
+fn obstacle_errors_name_the_obstacle() {
+    let dir = scratch("obstacle-index");
+    let shown = isochor(&["show", "two-tets"]);
+    let scene = format!(
+        "{}\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -10.0]\n\n\
+         [[obstacles]]\nshape = \"sphere\"\ncenter = [0.0, 0.0, -10.0]\nradius = -1.0\n",
+        String::from_utf8_lossy(&shown.stdout)
+    );
+    let path = dir.join("obstacles.toml");
+    std::fs::write(&path, scene).unwrap();
+    refused(
+        &isochor(&["run", path.to_str().unwrap()]),
+        &["obstacle 1", "sphere"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

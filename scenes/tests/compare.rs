@@ -39,6 +39,7 @@ fn result(method: &str, probes: &[(&str, f64)], converged: bool) -> RunResult {
         error: None,
         failed_step: None,
         overrides: Vec::new(),
+        warnings: Vec::new(),
         history: Vec::new(),
         failed: None,
         dynamic: false,

@@ -162,3 +162,42 @@ fn missing_groups_and_generated_meshes_are_errors() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A group name that two dimensions use is reported as ambiguous with its dimensions, and
+/// a curve group is found and refused as one. Before: both were "no physical group".
+#[test]
+fn ambiguous_and_curve_groups_say_what_they_are() {
+    let dir = scratch("ambiguous");
+    let gmsh = Path::new(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/two-groups-v22.msh");
+    let text = std::fs::read_to_string(gmsh)
+        .unwrap()
+        .replace("2 1 \"base\"", "2 1 \"all\"");
+    let mesh = dir.join("two-groups.msh");
+    std::fs::write(&mesh, text).unwrap();
+    let mesh_table = format!("generator = \"file\"\npath = \"{}\"", mesh.display());
+    let select = |base: &str| {
+        let scene = write_scene(
+            &dir,
+            "scene.toml",
+            &mesh_table,
+            &format!(
+                "[selections.base]\nphysical = \"{base}\"\n\n[selections.cavity]\nphysical = \"3:all\"\n"
+            ),
+        )
+        .unwrap();
+        let resolved = mesh_with_groups(scene.mesh.as_ref().unwrap(), scene.element(), true).unwrap();
+        let s = Selections::new(&resolved, &scene.selections).unwrap();
+        s.vertices("base").map(|_| ())
+    };
+    let err = select("all").unwrap_err().to_string();
+    assert!(
+        err.contains("ambiguous")
+            && err.contains("dimensions 2 and 3")
+            && err.contains("\"2:all\""),
+        "{err}"
+    );
+    let err = select("edge").unwrap_err().to_string();
+    assert!(err.contains("curves (dimension 1)"), "{err}");
+    assert!(select("2:all").is_ok());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

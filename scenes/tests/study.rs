@@ -54,6 +54,7 @@ fn run_on(method: Method, element: TetElement, res: f64, value: f64, wall_time_s
         error: None,
         failed_step: None,
         overrides: Vec::new(),
+        warnings: Vec::new(),
         history: Vec::new(),
         failed: None,
         dynamic: false,

@@ -141,7 +141,7 @@ pub use settings::{
 };
 pub use simulation::{
     Adaptive, Checkpoint, Energies, Frame, Linearizer, Matrices, NewtonSystem, Progress,
-    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping,
+    RunSummary, Simulation, SimulationFailure, State, StepControl, Stepping, MIN_INCREMENT_FLOOR,
 };
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
 pub use sprs;

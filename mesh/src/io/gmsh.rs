@@ -5,9 +5,11 @@
 //! mixing 4- and 10-node tets, are rejected.
 //!
 //! [`read_gmsh_with_groups`] also reads the physical groups of surfaces and volumes: their
-//! names (`$PhysicalNames`), their triangles (3- and 6-node, by their corners) and tets. An
-//! element's groups are the first tag of its line in format 2.2, and the physical tags of its
-//! entity (`$Entities`) in format 4.1.
+//! names (`$PhysicalNames`), their triangles (3- and 6-node, by their corners) and tets, and
+//! the names of point and curve groups (without elements). An element's groups are the first
+//! tag of its lines in format 2.2 (which writes an element of several groups once per group:
+//! the lines are read as one element), and the physical tags of its entity (`$Entities`) in
+//! format 4.1.
 
 use super::text::{excerpt, Fields, Lines};
 use super::{assemble, read_text, Cells, FileNodes};
@@ -51,7 +53,8 @@ pub fn read_gmsh_elements(path: impl AsRef<Path>) -> Result<ElementMesh, MeshErr
 }
 
 /// Reads a Gmsh mesh like [`read_gmsh_elements`] with its physical groups of dimension 2
-/// (surfaces) and 3 (volumes), their vertices numbered as the mesh's. Fails at its line on a
+/// (surfaces) and 3 (volumes), their vertices numbered as the mesh's, and the named point
+/// and curve groups (dimension 0 and 1, without elements). Fails at its line on a
 /// triangle with a node that is no tet's corner.
 ///
 /// ```
@@ -249,8 +252,9 @@ fn parse(path: &Path, text: &str) -> Result<(FileNodes, Cells, RawGroups), MeshE
     Ok((nodes, cells, groups))
 }
 
-/// `$PhysicalNames`: `count`, then `dimension tag "name"` per line. Names of surface and
-/// volume groups are kept (and their groups listed even if empty).
+/// `$PhysicalNames`: `count`, then `dimension tag "name"` per line. Groups of every
+/// dimension are kept (and listed even if empty); only surface and volume groups hold
+/// elements, so a point or curve group is found, and a selection of it says what it is.
 fn read_physical_names(lines: &mut Lines, groups: &mut RawGroups) -> Result<(), MeshError> {
     let count = lines
         .data("the number of physical names")?
@@ -273,10 +277,13 @@ fn read_physical_names(lines: &mut Lines, groups: &mut RawGroups) -> Result<(), 
                 )))
             }
         };
-        if matches!(dimension, 2 | 3) {
-            groups.names.insert((dimension, tag), name.to_string());
-            groups.groups.entry((dimension, tag)).or_default();
+        if dimension > 3 {
+            return Err(f.error(format!(
+                "physical group dimension {dimension}: expected 0 (points) to 3 (volumes)"
+            )));
         }
+        groups.names.insert((dimension, tag), name.to_string());
+        groups.groups.entry((dimension, tag)).or_default();
     }
     Ok(())
 }
@@ -520,6 +527,41 @@ fn read_triangle(f: &mut Fields, n: usize, nodes: &Nodes) -> Result<[usize; 3], 
     Ok(corners)
 }
 
+/// The tets of a format 2.2 file by their nodes: Gmsh 2.2 writes an element of several
+/// physical groups once per group, each line with one group's tag; the lines of one element
+/// (the same nodes in the same order) are read as one tet in all their groups, as format 4.1
+/// (one line, the entity's several physical tags) says it.
+#[derive(Default)]
+struct Repeats {
+    /// The first tet of each sequence of corners.
+    first: HashMap<[usize; 4], usize>,
+}
+
+impl Repeats {
+    /// The index of tet `index`, just read into `cells`: its own, or if it repeats an earlier
+    /// tet's nodes, that tet's (and the repeat is removed from `cells`).
+    fn merge(&mut self, cells: &mut Option<Cells>, index: usize) -> usize {
+        let Some(cells) = cells.as_mut() else {
+            return index;
+        };
+        let n = cells.kind.num_nodes();
+        let nodes = &cells.connectivity[index * n..];
+        let corners = [nodes[0], nodes[1], nodes[2], nodes[3]];
+        match self.first.get(&corners) {
+            Some(&first) if cells.connectivity[first * n..(first + 1) * n] == *nodes => {
+                cells.connectivity.truncate(index * n);
+                cells.tags.truncate(index);
+                cells.lines.truncate(index);
+                first
+            }
+            _ => {
+                self.first.entry(corners).or_insert(index);
+                index
+            }
+        }
+    }
+}
+
 /// The physical tag of a format 2.2 element line (its first tag; 0 if it has none), after
 /// which the other tags are skipped.
 fn v2_physical_tag(f: &mut Fields) -> Result<i64, MeshError> {
@@ -542,6 +584,7 @@ fn read_elements(
     let next_tet = |cells: &Option<Cells>| cells.as_ref().map_or(0, |c: &Cells| c.tags.len());
     match version {
         Version::V2 => {
+            let mut once_per_element = Repeats::default();
             let count = lines
                 .data("the number of elements")?
                 .usize("the number of elements")?;
@@ -557,6 +600,7 @@ fn read_elements(
                     let physical = v2_physical_tag(&mut f)?;
                     let index = next_tet(&cells);
                     read_tet(&mut f, tag, tet, nodes, &mut cells)?;
+                    let index = once_per_element.merge(&mut cells, index);
                     groups.add_tet(&[physical], index);
                 } else if let Some(n) = triangle_nodes(kind) {
                     let physical = v2_physical_tag(&mut f)?;
@@ -610,6 +654,11 @@ fn read_elements(
                 ));
             }
         }
+    }
+    // A tet listed twice in one group (a repeated 2.2 line) is in it once.
+    for group in groups.groups.values_mut() {
+        group.tets.sort_unstable();
+        group.tets.dedup();
     }
     Ok(cells.unwrap_or(Cells {
         kind: TetElement::Tet4,

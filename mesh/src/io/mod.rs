@@ -74,8 +74,50 @@ fn unknown_format(path: &Path) -> MeshError {
 
 /// Reads a whole file as text (invalid UTF-8 is replaced, and then fails to parse).
 fn read_text(path: &Path) -> Result<String, MeshError> {
-    let bytes = std::fs::read(path).map_err(|e| MeshError::io(path, e))?;
+    let bytes = read_regular_file(path)?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// Reads a whole regular file; a device (`/dev/zero`, `/dev/urandom`), FIFO or socket, or a
+/// link to one, is refused before it is opened (reading one would never end, or block).
+pub(crate) fn read_regular_file(path: &Path) -> Result<Vec<u8>, MeshError> {
+    check_regular_file(path)?;
+    std::fs::read(path).map_err(|e| MeshError::io(path, e))
+}
+
+/// Refuses a `path` that is a device, FIFO or socket (symbolic links followed) without
+/// opening it; a missing path or a folder is left to the reader, which says so.
+pub fn check_regular_file(path: &Path) -> Result<(), MeshError> {
+    match std::fs::metadata(path) {
+        Ok(m) if !m.is_file() && !m.is_dir() => Err(MeshError::Format {
+            path: path.into(),
+            message: format!(
+                "is a {}, not a regular file: refused before reading",
+                file_kind(&m.file_type())
+            ),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// What a file that is not regular is, for messages.
+fn file_kind(kind: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_char_device() || kind.is_block_device() {
+            return "device";
+        }
+        if kind.is_fifo() {
+            return "FIFO (named pipe)";
+        }
+        if kind.is_socket() {
+            return "socket";
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = kind;
+    "special file"
 }
 
 /// The elements read from a file: their kind, `kind.num_nodes()` node indices per element, and

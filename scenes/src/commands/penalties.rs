@@ -9,7 +9,7 @@
 //! ([`StvkPenalty`]).
 
 use crate::error::SceneError;
-use crate::output::{finish_plot, plot_error, register_font, OutputDir};
+use crate::output::{finish_plot, plot_error, register_font, OutputDir, OutputIdentity};
 use isochor_energies::{
     LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty, VolumetricPenalty,
 };
@@ -65,7 +65,7 @@ fn sample(u: &dyn VolumetricPenalty, j: f64, derivative: bool) -> Option<f64> {
 /// Writes `penalties.csv` (columns `J`, then `U_NAME` and `dU_NAME` per penalty) and
 /// `penalties.png` (`U` above, `U'` below) to `out`, replacing an earlier output there.
 pub fn write_penalty_plot(out: &Path) -> Result<PathBuf, SceneError> {
-    let dir = OutputDir::create(out)?;
+    let dir = OutputDir::create(out, OutputIdentity::new("penalties", ""))?;
     let curves = penalties()?;
     let js: Vec<f64> = (1..=SAMPLES)
         .map(|k| 3.0 * k as f64 / SAMPLES as f64)

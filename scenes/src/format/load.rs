@@ -47,6 +47,15 @@ impl SceneSource {
                 std::io::Error::other("is a directory, not a scene file"),
             ));
         }
+        // A device or FIFO would be read for ever, or block.
+        isochor_mesh::io::check_regular_file(path).map_err(|e| SceneError::Invalid {
+            origin: path.display().to_string(),
+            key: String::new(),
+            message: match e {
+                isochor_mesh::MeshError::Format { message, .. } => message,
+                other => other.to_string(),
+            },
+        })?;
         let bytes = std::fs::read(path).map_err(|e| {
             let e = match e.kind() {
                 std::io::ErrorKind::NotFound => std::io::Error::new(
@@ -107,28 +116,42 @@ impl SceneSource {
         }
         all.extend_from_slice(overrides);
         if all.is_empty() {
-            let scene = self.resolve_paths(base);
+            let scene = self.resolve_paths(base)?;
             limits::check_memory(&scene, &self.origin)?;
             return Ok(scene);
         }
         let mut tree = tree;
         apply_all(&mut tree, &all)?;
         let origin = format!("{} (with --set overrides)", self.origin);
-        let scene = self.resolve_paths(Scene::from_value(tree, &origin)?);
+        let scene = self.resolve_paths(Scene::from_value(tree, &origin)?)?;
         limits::check_memory(&scene, &origin)?;
         Ok(scene)
     }
 
-    fn resolve_paths(&self, mut scene: Scene) -> Scene {
+    /// Resolves a relative mesh path of every body against the scene's folder and refuses a
+    /// mesh path that is a device, FIFO or socket (the header scan of
+    /// [`limits::check_memory`] reads it next).
+    fn resolve_paths(&self, mut scene: Scene) -> Result<Scene, SceneError> {
         let meshes = scene.mesh.iter_mut();
         for mesh in meshes.chain(scene.bodies.iter_mut().map(|b| &mut b.mesh)) {
-            if let MeshSpec::File { path } = mesh {
-                if path.is_relative() {
-                    *path = self.base_dir.join(&*path);
+            let MeshSpec::File { path } = mesh else {
+                continue;
+            };
+            if path.is_relative() {
+                *path = self.base_dir.join(&*path);
+            }
+            let tetgen = matches!(
+                path.extension().and_then(|e| e.to_str()),
+                Some("node" | "ele")
+            );
+            isochor_mesh::io::check_regular_file(path)?;
+            if tetgen {
+                for ext in ["node", "ele"] {
+                    isochor_mesh::io::check_regular_file(&path.with_extension(ext))?;
                 }
             }
         }
-        scene
+        Ok(scene)
     }
 }
 

@@ -85,3 +85,15 @@ pub enum ObstacleSpec {
         curve: Option<CurveSpec>,
     },
 }
+
+impl ObstacleSpec {
+    /// The obstacle's motion curve, if it has one.
+    pub fn curve(&self) -> &Option<CurveSpec> {
+        match self {
+            ObstacleSpec::HalfSpace { curve, .. }
+            | ObstacleSpec::Sphere { curve, .. }
+            | ObstacleSpec::Cylinder { curve, .. }
+            | ObstacleSpec::Ring { curve, .. } => curve,
+        }
+    }
+}

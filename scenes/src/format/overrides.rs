@@ -89,7 +89,7 @@ impl Override {
             })?;
         let key = key.trim();
         check_key_syntax(key).map_err(|message| SceneError::Override {
-            key: key.to_string(),
+            key: isochor_mesh::io::excerpt(key),
             message,
         })?;
         Ok(Override {
@@ -123,12 +123,24 @@ pub fn parse_value(raw: &str) -> Value {
         .unwrap_or_else(|| Value::String(raw.to_string()))
 }
 
-/// Checks that a key is a non-empty dotted path of non-empty segments.
+/// The most segments a dotted key may have: the deepest key of a scene has 6
+/// (`dirichlet.0.motion.rotate.axis.0`); a deeper one would build tables nested deep enough
+/// to overflow the stack of the code that reads them.
+pub const MAX_KEY_DEPTH: usize = 32;
+
+/// Checks that a key is a non-empty dotted path of at most [`MAX_KEY_DEPTH`] non-empty
+/// segments.
 pub fn check_key_syntax(key: &str) -> Result<(), String> {
     if key.is_empty() || key.split('.').any(str::is_empty) {
         return Err(format!(
             "'{key}' is not a key: use a parameter name ({}) or a dotted key like material.nu",
             flat_names().join(", ")
+        ));
+    }
+    let depth = key.split('.').count();
+    if depth > MAX_KEY_DEPTH {
+        return Err(format!(
+            "a key of {depth} dotted segments: at most {MAX_KEY_DEPTH} (no scene key is that deep)"
         ));
     }
     Ok(())
@@ -276,9 +288,11 @@ fn conflict(a: &str, b: &str) -> bool {
 /// Applies one override.
 pub fn apply(tree: &mut Value, o: &Override) -> Result<(), SceneError> {
     let err = |message: String| SceneError::Override {
-        key: o.key.clone(),
+        key: isochor_mesh::io::excerpt(&o.key),
         message,
     };
+    // A variant's keys come from the scene file, not through `Override::parse`.
+    check_key_syntax(&o.key).map_err(err)?;
     if o.key == "mesh" {
         let Value::String(path) = &o.value else {
             return Err(err(

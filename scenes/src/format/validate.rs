@@ -4,6 +4,7 @@
 //! that hold a quasi-static body and obstacles clear of the body at the start.
 
 use super::bodies::SCENE_BODY;
+use super::conditions::{CurveSpec, MotionSpec};
 use super::limits;
 use super::mesh::MeshSpec;
 use super::names::{ZonalEnergyName, ZoneKind};
@@ -15,7 +16,7 @@ use super::scene::Scene;
 use super::stepping::{SteppingSpec, VOLUME_PROJECTIONS};
 use crate::error::SceneError;
 use isochor_mesh::element::Part;
-use isochor_solvers::{Method, Problem};
+use isochor_solvers::{Method, Problem, MIN_INCREMENT_FLOOR};
 use toml::Value;
 
 /// Refuses NaN anywhere in a scene's TOML tree, and infinities except where a key accepts
@@ -65,11 +66,12 @@ type SectionCheck = fn(&Scene) -> Result<(), Fault>;
 /// Checks the cross-key rules of `scene` (read from `origin`) that serde cannot express, one
 /// section at a time, then the bounds on its steps.
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
-    let sections: [SectionCheck; 10] = [
+    let sections: [SectionCheck; 11] = [
         bodies,
         material_and_regions,
         selections,
         conditions,
+        curves,
         zones,
         probes,
         stepping,
@@ -321,6 +323,19 @@ fn stepping(scene: &Scene) -> Result<(), Fault> {
                     format!("unknown value '{other}' (valid: adaptive, fixed)"),
                 ));
             }
+            if increments.as_deref() == Some("fixed") {
+                for (key, value) in [
+                    ("stepping.first_increment", first_increment),
+                    ("stepping.min_increment", min_increment),
+                ] {
+                    if value.is_some() {
+                        return Err(fault(
+                            key,
+                            "applies to increments = \"adaptive\" only (fixed stepping takes one solve per frame)",
+                        ));
+                    }
+                }
+            }
             let first = first_increment.unwrap_or(1.0);
             if !(first > 0.0 && first <= 1.0) {
                 return Err(fault(
@@ -329,10 +344,13 @@ fn stepping(scene: &Scene) -> Result<(), Fault> {
                 ));
             }
             let min = min_increment.unwrap_or(1e-4);
-            if !(min > 0.0 && min <= first) {
+            if !(min >= MIN_INCREMENT_FLOOR && min <= first) {
                 return Err(fault(
                     "stepping.min_increment",
-                    format!("{min} must lie in (0, first_increment = {first}]"),
+                    format!(
+                        "{min:e} must lie in [{MIN_INCREMENT_FLOOR:e}, first_increment = {first}] \
+                         (the floor is 30 halvings of the whole run)"
+                    ),
                 ));
             }
             Ok(())
@@ -378,6 +396,122 @@ fn stepping(scene: &Scene) -> Result<(), Fault> {
             Ok(())
         }
     }
+}
+
+/// Most points of one load curve. Every corner of a curve inside a quasi-static run is a
+/// level the stepping stops at, a solve of its own: 10,001 corners took 79 s on two tets.
+pub const MAX_CURVE_POINTS: usize = 10_000;
+
+/// Every load curve of the scene, with its key.
+fn all_curves(scene: &Scene) -> Vec<(String, &CurveSpec)> {
+    let dirichlet = scene.dirichlet.iter().enumerate();
+    let loads = &scene.loads;
+    dirichlet
+        .map(|(i, d)| (format!("dirichlet.{i}.curve"), d.curve.as_ref()))
+        .chain([(
+            "loads.gravity_curve".to_string(),
+            loads.gravity_curve.as_ref(),
+        )])
+        .chain(
+            loads
+                .traction
+                .iter()
+                .enumerate()
+                .map(|(i, t)| (format!("loads.traction.{i}.curve"), t.curve.as_ref())),
+        )
+        .chain(
+            loads
+                .pressure
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (format!("loads.pressure.{i}.curve"), p.curve.as_ref())),
+        )
+        .chain(
+            scene
+                .obstacles
+                .iter()
+                .enumerate()
+                .map(|(i, o)| (format!("obstacles.{i}.curve"), o.curve().as_ref())),
+        )
+        .filter_map(|(key, curve)| Some((key, curve?)))
+        .collect()
+}
+
+/// Each load curve has at most [`MAX_CURVE_POINTS`] points, and the levels of a quasi-static
+/// run (its steps and the curves' corners inside the run) are at most
+/// [`limits::MAX_STEPS`].
+fn curves(scene: &Scene) -> Result<(), Fault> {
+    let curves = all_curves(scene);
+    for (key, curve) in &curves {
+        if curve.len() > MAX_CURVE_POINTS {
+            return Err(fault(
+                key.clone(),
+                format!(
+                    "{} points: at most {MAX_CURVE_POINTS} (each corner inside the run is a solve of its own)",
+                    curve.len()
+                ),
+            ));
+        }
+    }
+    let end = match scene.stepping {
+        SteppingSpec::QuasiStatic { .. } => 1.0,
+        SteppingSpec::Dynamic { dt, frames, .. } => dt * frames as f64,
+    };
+    for (key, curve) in &curves {
+        if let [first, _, ..] = curve.as_slice() {
+            if first[0] >= end {
+                return Err(fault(
+                    key.clone(),
+                    format!(
+                        "every point lies at or beyond the run's end ({end}: {}), so the curve \
+                         stays at its first value {} over the whole run",
+                        if scene.is_dynamic() {
+                            "frames * dt, in seconds"
+                        } else {
+                            "the load parameter of a quasi-static run"
+                        },
+                        first[1]
+                    ),
+                ));
+            }
+        }
+    }
+    if scene.loads.gravity_curve.is_some()
+        && scene
+            .loads
+            .gravity
+            .is_none_or(|g| g.iter().all(|&c| c == 0.0))
+    {
+        return Err(fault(
+            "loads.gravity_curve",
+            "the scene has no gravity (loads.gravity is missing or zero) for it to scale",
+        ));
+    }
+    for (i, d) in scene.dirichlet.iter().enumerate() {
+        if d.curve.is_some() && d.motion == MotionSpec::Fixed {
+            return Err(fault(
+                format!("dirichlet.{i}.curve"),
+                "the support is fixed (no motion), so a curve changes nothing: give it a motion",
+            ));
+        }
+    }
+    if let SteppingSpec::QuasiStatic { steps, .. } = scene.stepping {
+        let corners = curves
+            .iter()
+            .flat_map(|(_, c)| c.iter().map(|p| p[0]))
+            .filter(|&s| s > 0.0 && s < 1.0)
+            .count();
+        if corners > 0 && steps.saturating_add(corners) > limits::MAX_STEPS {
+            return Err(fault(
+                "stepping.steps",
+                format!(
+                    "{steps} steps and {corners} load-curve corners inside the run: at most {} levels",
+                    limits::MAX_STEPS
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `[solver]` and `[output]` keys that depend on the rest of the scene.
@@ -607,6 +741,32 @@ fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(
         }
     }
     Ok(())
+}
+
+/// What a scene asks for that a user may mean but likely does not, as warnings (printed on
+/// stderr and kept in the run's summary): a massless body whose only load is gravity.
+pub fn warnings(scene: &Scene) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let gravity = scene
+        .loads
+        .gravity
+        .is_some_and(|g| g.iter().any(|&c| c != 0.0));
+    let other_loads = !scene.loads.traction.is_empty()
+        || !scene.loads.pressure.is_empty()
+        || !scene.obstacles.is_empty()
+        || scene
+            .dirichlet
+            .iter()
+            .any(|d| d.motion != MotionSpec::Fixed);
+    let massive_region = scene.regions.iter().any(|r| {
+        r.material.get("rho").and_then(Value::as_float) != Some(0.0)
+            && r.material.contains_key("rho")
+    });
+    if gravity && !other_loads && scene.material.rho == 0.0 && !massive_region {
+        warnings
+            .push("material.rho = 0 and gravity is the only load: the body carries no load".into());
+    }
+    warnings
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 
 use crate::error::SceneError;
 use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
-use isochor_mesh::{ElementMesh, Vec3};
+use isochor_mesh::{ElementMesh, MeshError, Vec3};
 use nalgebra::Matrix3;
 use std::path::{Path, PathBuf};
 
@@ -209,7 +209,8 @@ impl FrameWriter {
             &points,
             &cells,
             self.encoding,
-        )?;
+        )
+        .map_err(written)?;
         self.entries.push((t, name));
         Ok(())
     }
@@ -226,7 +227,29 @@ impl FrameWriter {
 
     /// Writes the `.pvd` collection of the frames written so far.
     pub fn finish(&self) -> Result<(), SceneError> {
-        write_pvd(self.dir.join(format!("{}.pvd", self.stem)), &self.entries)?;
-        Ok(())
+        write_pvd(self.dir.join(format!("{}.pvd", self.stem)), &self.entries).map_err(written)
+    }
+}
+
+/// The error of writing an output file: an I/O error (a full disk) as the file's, not the
+/// mesh's.
+fn written(e: MeshError) -> SceneError {
+    match e {
+        MeshError::Io { path, source } => SceneError::io(path, source),
+        other => SceneError::Mesh(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Before: a full disk while writing a frame said "mesh: ...: No space left on device".
+    #[test]
+    fn a_full_disk_is_the_output_files_error_not_the_meshs() {
+        let full = std::io::Error::from(std::io::ErrorKind::StorageFull);
+        let e = written(MeshError::io(Path::new("out/frame_00001.vtu"), full)).to_string();
+        assert!(e.starts_with("out/frame_00001.vtu: "), "{e}");
+        assert!(!e.contains("mesh"), "{e}");
     }
 }

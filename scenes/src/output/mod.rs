@@ -1,11 +1,15 @@
 //! What `--out DIR` writes: VTU frames and a `.pvd` collection, `summary.json`, CSV logs,
 //! PNG plots and `preview.png`, a picture of the final deformed body (see [`write_preview`];
-//! for a run that failed, its last accepted state). Everything goes to a temporary folder next to `DIR` that is renamed to `DIR`
-//! only when the run's outputs are complete, so an error leaves no partial output.
+//! for a run that failed, its last accepted state). Everything goes to a temporary folder
+//! next to `DIR` that replaces `DIR` only when the run's outputs are complete and synced, so
+//! an error leaves no partial output ([`OutputDir`]); a marker file says the folder is
+//! isochor's, and a lock keeps a second run out of it.
 
 mod atomic;
 mod csv;
 mod frames;
+mod lock;
+mod marker;
 mod plots;
 mod potential;
 mod preview;
@@ -13,6 +17,7 @@ mod preview;
 pub use atomic::{write_file, OutputDir, CHECKPOINT_FILE};
 pub use csv::{write_iterations_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
+pub use marker::{OutputIdentity, MARKER_FILE};
 pub(crate) use plots::{draw_legend, finish_plot, plot_error, range, register_font, tick};
 pub use plots::{plot_energy, plot_residuals};
 pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};

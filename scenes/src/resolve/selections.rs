@@ -244,6 +244,22 @@ impl Resolver<'_> {
             ));
         };
         let Some(group) = groups.get(key) else {
+            let dimensions: Vec<String> = (0..=3)
+                .filter(|d| groups.get(&format!("{d}:{key}")).is_some())
+                .map(|d| d.to_string())
+                .collect();
+            if !dimensions.is_empty() {
+                let keys: Vec<String> = dimensions
+                    .iter()
+                    .map(|d| format!("\"{d}:{key}\""))
+                    .collect();
+                return Err(format!(
+                    "physical = \"{key}\" is ambiguous: {} has groups \"{key}\" of dimensions {}; name one as {}",
+                    self.source,
+                    dimensions.join(" and "),
+                    keys.join(" or ")
+                ));
+            }
             let keys: Vec<&str> = groups.keys().collect();
             return Err(if keys.is_empty() {
                 format!(
@@ -258,6 +274,17 @@ impl Resolver<'_> {
                 )
             });
         };
+        if group.dimension < 2 {
+            let kind = if group.dimension == 0 {
+                "points"
+            } else {
+                "curves"
+            };
+            return Err(format!(
+                "physical group \"{key}\" is a group of {kind} (dimension {}): a selection takes a surface (2) or volume (3) group",
+                group.dimension
+            ));
+        }
         self.group(group, spec.surface)
             .map(Some)
             .map_err(|m| format!("physical group \"{key}\" {m}"))

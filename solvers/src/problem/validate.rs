@@ -52,8 +52,15 @@ impl Problem {
                 }
             }
         }
-        for obstacle in &self.obstacles {
-            obstacle.validate()?;
+        for (i, obstacle) in self.obstacles.iter().enumerate() {
+            obstacle.validate().map_err(|e| match e {
+                SolverError::InvalidProblem(m) => SolverError::InvalidProblem(m.replacen(
+                    "obstacle:",
+                    &format!("obstacle {i} (numbered from 0):"),
+                    1,
+                )),
+                other => other,
+            })?;
         }
         Ok(())
     }

@@ -13,7 +13,7 @@ mod volume_projection;
 pub use linearize::{Linearizer, NewtonSystem};
 pub use matrices::Matrices;
 pub use state::{Checkpoint, Energies, Frame, RunSummary, SimulationFailure, State};
-pub use stepper::{Adaptive, Progress, StepControl};
+pub use stepper::{Adaptive, Progress, StepControl, MIN_INCREMENT_FLOOR};
 pub use stepping::Stepping;
 
 use crate::error::SolverError;

@@ -58,10 +58,16 @@ impl Simulation {
             .map_err(|e| failure(e, 0, &self.state, &[]))?;
         let mut run = Run::new(&self.model, plan).map_err(|e| failure(e, 0, &self.state, &[]))?;
         let stepper = Stepper::new(&stepping, &self.model.curve_corners);
-        let mut progress = self
-            .resume
-            .take()
-            .unwrap_or_else(|| Progress::start(&stepping));
+        let mut progress = match self.resume.take() {
+            Some(resumed) => {
+                stepper.check_progress(&resumed).map_err(|m| {
+                    let e = SolverError::InvalidProblem(format!("the checkpoint's {m}"));
+                    failure(e, 0, &self.state, &[])
+                })?;
+                resumed
+            }
+            None => Progress::start(&stepping),
+        };
         if !run.system.is_valid(&self.state.positions) {
             let e = SolverError::InvalidInitialState(format!(
                 "{} tets are inverted or degenerate where the energy is undefined",
@@ -106,6 +112,13 @@ impl Simulation {
             max_inverted_tets: max_inverted,
             wall_time: start.elapsed(),
         })
+    }
+
+    /// Checks that `progress`, read from a checkpoint, is a point a run of `stepping` on this
+    /// problem can reach (levels, steps, load parameter or time and increment consistent with the
+    /// stepping and the load curves); the message names the field at fault.
+    pub fn check_progress(&self, stepping: Stepping, progress: &Progress) -> Result<(), String> {
+        Stepper::new(&stepping, &self.model.curve_corners).check_progress(progress)
     }
 
     /// Checks `stepping` against the settings and fixes what a run of it needs before its

@@ -40,6 +40,12 @@ impl Default for Adaptive {
     }
 }
 
+/// The smallest `Adaptive::min` a run accepts, as a fraction of the run: 30 halvings of the
+/// whole load. Below it a failing step would be halved hundreds of times (each attempt up to
+/// the Newton limit) before its error, for increments that no longer change the load at
+/// double precision near the end of the run.
+pub const MIN_INCREMENT_FLOOR: f64 = 1e-9;
+
 /// Smallest substep of dynamics, as a fraction of the frame's time step: 10 halvings.
 const MIN_SUBSTEP: f64 = 1.0 / 1024.0;
 
@@ -171,6 +177,54 @@ impl Stepper {
                 min_increment: dt * MIN_SUBSTEP,
             },
         }
+    }
+
+    /// Checks that `progress` (read from a checkpoint) is a point this stepping can reach:
+    /// `levels` at most the levels there are, `t` finite and between the last level reached
+    /// and the next one (the end of the run once all are reached), at least one step per level
+    /// reached, and a finite positive increment. The message names the field at fault.
+    pub fn check_progress(&self, progress: &Progress) -> Result<(), String> {
+        let Progress {
+            t,
+            steps,
+            levels,
+            increment,
+        } = *progress;
+        let total = self.levels.len();
+        if levels > total {
+            return Err(format!(
+                "levels = {levels}, but this stepping has {total} levels (frames and load-curve corners)"
+            ));
+        }
+        if steps < levels {
+            return Err(format!(
+                "steps = {steps} is fewer than the levels reached ({levels})"
+            ));
+        }
+        let reached = levels
+            .checked_sub(1)
+            .map_or(0.0, |i| self.levels[i].level.t);
+        let in_range = if levels == total {
+            t == reached
+        } else {
+            t >= reached && t < self.levels[levels].level.t
+        };
+        if !(t.is_finite() && in_range) {
+            return Err(match self.levels.get(levels) {
+                Some(next) => format!(
+                    "progress_t = {t} does not lie between the last level reached ({reached}) and the next ({})",
+                    next.level.t
+                ),
+                None => format!("progress_t = {t}, but all levels are reached: it must be the end, {reached}"),
+            });
+        }
+        if !(increment > 0.0 && increment.is_finite() && increment <= self.max_increment) {
+            return Err(format!(
+                "increment = {increment} must lie in (0, {}]",
+                self.max_increment
+            ));
+        }
+        Ok(())
     }
 
     /// Whether every level has been reached.

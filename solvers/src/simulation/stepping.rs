@@ -1,6 +1,6 @@
 //! How time or load advances: quasi-static load levels or implicit Euler time steps.
 
-use super::stepper::{Adaptive, StepControl};
+use super::stepper::{Adaptive, StepControl, MIN_INCREMENT_FLOOR};
 use crate::error::SolverError;
 
 /// How time or load advances.
@@ -63,9 +63,9 @@ pub(super) fn check_stepping(stepping: Stepping) -> Result<(), SolverError> {
         Stepping::QuasiStatic {
             control: StepControl::Adaptive(a),
             ..
-        } if !(a.first > 0.0 && a.first <= 1.0 && a.min > 0.0 && a.min <= a.first) => {
+        } if !(a.first > 0.0 && a.first <= 1.0 && a.min >= MIN_INCREMENT_FLOOR && a.min <= a.first) => {
             Err(SolverError::InvalidProblem(format!(
-                "adaptive stepping needs 0 < min increment ({}) <= first increment ({}) <= 1",
+                "adaptive stepping needs {MIN_INCREMENT_FLOOR:e} <= min increment ({}) <= first increment ({}) <= 1",
                 a.min, a.first
             )))
         }

@@ -51,7 +51,7 @@ pub fn read_vtu_file(path: impl AsRef<Path>) -> Result<VtuFile, MeshError> {
 }
 
 fn read_bytes(path: &Path) -> Result<Vec<u8>, MeshError> {
-    std::fs::read(path).map_err(|e| MeshError::io(path, e))
+    super::super::read_regular_file(path)
 }
 
 /// Builds the file contents from the XML scan; with `quadratic` false, quadratic tets are

@@ -13,7 +13,7 @@ use crate::commands::run::{run_scene, RunOptions};
 use crate::error::SceneError;
 use crate::format::overrides::{parse_sweep, Override};
 use crate::format::SceneSource;
-use crate::output::{write_file, OutputDir};
+use crate::output::{write_file, OutputDir, OutputIdentity};
 use isochor_solvers::Method;
 use std::path::{Path, PathBuf};
 
@@ -105,7 +105,11 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
             ));
         }
     }
-    let out = request.out.as_deref().map(OutputDir::create).transpose()?;
+    let out = request
+        .out
+        .as_deref()
+        .map(|d| OutputDir::create(d, OutputIdentity::new("compare", &base.name)))
+        .transpose()?;
     let mut rows = Vec::new();
     for (sweep_value, label, variant, overrides, scene) in plans {
         let options = RunOptions::in_memory(variant, &overrides, request.progress);

@@ -8,11 +8,12 @@
 use super::options::RunOptions;
 use crate::error::SceneError;
 use crate::format::Scene;
-use crate::output::{write_file, CHECKPOINT_FILE};
+use crate::output::CHECKPOINT_FILE;
 use crate::record::StepRecord;
 use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, Progress, State};
 use serde::{Deserialize, Serialize};
+use std::io::Write;
 use std::path::Path;
 
 /// The format version; a checkpoint of another version is refused.
@@ -134,7 +135,7 @@ impl RunCheckpoint {
     pub fn write(&self, dir: &Path) -> Result<(), SceneError> {
         let text = toml::to_string(self).map_err(|e| SceneError::Output(e.to_string()))?;
         let temp = dir.join(format!("{CHECKPOINT_FILE}.new"));
-        write_file(&temp, text.as_bytes())?;
+        write_synced(&temp, text.as_bytes())?;
         let path = dir.join(CHECKPOINT_FILE);
         std::fs::rename(&temp, &path).map_err(|e| SceneError::io(&path, e))
     }
@@ -158,6 +159,14 @@ impl RunCheckpoint {
                 ),
             });
         }
+        checkpoint.check(&path.display().to_string())?;
         Ok(checkpoint)
     }
+}
+
+/// Writes a whole file and fsyncs it, so the rename that follows never exposes an empty one.
+fn write_synced(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
+    std::fs::File::create(path)
+        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
+        .map_err(|e| SceneError::io(path, e))
 }

@@ -12,14 +12,14 @@ use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::RunResult;
 use crate::resolve::{self, ResolvedScene};
-use isochor_solvers::Simulation;
-use std::path::PathBuf;
+use isochor_solvers::{Checkpoint, Simulation};
+use std::path::{Path, PathBuf};
 
 /// Runs `scene` into `out`, from the start or from `resume`.
 pub(super) fn execute(
     scene: &Scene,
     options: &RunOptions,
-    out: Option<OutputDir>,
+    mut out: Option<OutputDir>,
     resume: Option<RunCheckpoint>,
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
     let ResolvedScene {
@@ -41,11 +41,25 @@ pub(super) fn execute(
     if let Some(v) = velocities {
         sim.set_velocities(v)?;
     }
+    // Only a run that has got this far replaces what an earlier run left.
+    if let Some(dir) = out.as_mut() {
+        dir.start()?;
+    }
     let body_ids = (bodies.parts.len() > 1).then(|| bodies.element_bodies());
     let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids, body_ids)?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {
-        sim.restore((&checkpoint.solver).into())?;
+        let solver: Checkpoint = (&checkpoint.solver).into();
+        sim.check_progress(stepping, &solver.progress)
+            .map_err(|message| SceneError::Invalid {
+                origin: format!(
+                    "the checkpoint in {}",
+                    options.out.as_deref().unwrap_or(Path::new(".")).display()
+                ),
+                key: "solver".into(),
+                message,
+            })?;
+        sim.restore(solver)?;
         observer.resume(checkpoint);
     }
     let outcome = sim.run(stepping, |frame| observer.observe(frame));

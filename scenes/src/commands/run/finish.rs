@@ -6,7 +6,7 @@ use super::observer::Observer;
 use super::options::RunOptions;
 use super::records::record;
 use crate::error::SceneError;
-use crate::format::Scene;
+use crate::format::{validate, Scene};
 use crate::output::{
     run_title, write_preview, write_run_outputs, FrameFields, OutputDir, PreviewOptions,
 };
@@ -191,11 +191,32 @@ impl Run<'_> {
             error: ending.error.clone(),
             failed_step: ending.failed_step,
             overrides: options.overrides.clone(),
+            warnings: warnings(scene, &history),
             history,
             failed,
             dynamic: scene.is_dynamic(),
         })
     }
+}
+
+/// The scene's warnings ([`validate::warnings`]) and one per obstacle that exerted no force
+/// in any accepted step.
+fn warnings(scene: &Scene, history: &[StepRecord]) -> Vec<String> {
+    let mut warnings = validate::warnings(scene);
+    for i in 0..scene.obstacles.len() {
+        let touched = history.iter().any(|s| {
+            s.contact
+                .obstacle_forces
+                .get(i)
+                .is_some_and(|f| f.iter().any(|&c| c != 0.0))
+        });
+        if !history.is_empty() && !touched {
+            warnings.push(format!(
+                "obstacles.{i} touched nothing: it exerted no force in any accepted step"
+            ));
+        }
+    }
+    warnings
 }
 
 /// Every probe of `scene` as NaN.

@@ -14,13 +14,14 @@ mod observer;
 mod options;
 mod records;
 mod resume;
+mod verify;
 
 pub use options::RunOptions;
 pub use resume::resume_run;
 
 use crate::error::SceneError;
 use crate::format::{load_scene, Override, Scene};
-use crate::output::OutputDir;
+use crate::output::{OutputDir, OutputIdentity};
 use crate::record::RunResult;
 use std::path::{Path, PathBuf};
 
@@ -42,8 +43,16 @@ pub fn run_scene(
             "--checkpoint-every must be at least 1".into(),
         ));
     }
-    let out = options.out.as_deref().map(OutputDir::create).transpose()?;
-    execute::execute(scene, options, out, None)
+    let out = options
+        .out
+        .as_deref()
+        .map(|d| OutputDir::prepare(d, OutputIdentity::new("run", &scene.name)))
+        .transpose()?;
+    let ran = execute::execute(scene, options, out, None)?;
+    for warning in &ran.0.warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(ran)
 }
 
 /// Runs a scene by name or path with a variant and `--set` overrides (the library entry of

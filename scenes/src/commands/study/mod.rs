@@ -41,7 +41,7 @@ use crate::commands::run::{run_scene, RunOptions};
 use crate::error::SceneError;
 use crate::format::overrides::parse_sweep;
 use crate::format::{Override, SceneSource};
-use crate::output::{write_file, OutputDir};
+use crate::output::{write_file, OutputDir, OutputIdentity};
 use isochor_mesh::element::TetElement;
 use isochor_solvers::{Method, Simulation};
 use std::path::PathBuf;
@@ -167,7 +167,11 @@ pub fn study(request: &StudyRequest) -> Result<(Study, Option<PathBuf>), SceneEr
             }
         }
     }
-    let out = request.out.as_deref().map(OutputDir::create).transpose()?;
+    let out = request
+        .out
+        .as_deref()
+        .map(|d| OutputDir::create(d, OutputIdentity::new("study", &base.name)))
+        .transpose()?;
     let mut runs = Vec::new();
     for (method, element, label, resolution, overrides, scene) in plans {
         let options = RunOptions::in_memory(None, &overrides, request.progress);
