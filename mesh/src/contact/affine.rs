@@ -51,7 +51,8 @@ impl<const N: usize, const K: usize> AffineResidual<N, K> {
             1 => std::array::from_fn(|_| rhs[0] / e[0].norm_squared()),
             _ => {
                 let (a, b, c) = (e[0].norm_squared(), e[0].dot(&e[1]), e[1].norm_squared());
-                let det = a * c - b * b;
+                // a c - b^2, without its cancellation.
+                let det = e[0].cross(&e[1]).norm_squared();
                 let l = [(c * rhs[0] - b * rhs[1]) / det, (a * rhs[1] - b * rhs[0]) / det];
                 std::array::from_fn(|k| l[k])
             }
@@ -94,7 +95,7 @@ impl<const N: usize, const K: usize> AffineResidual<N, K> {
                 [[1.0 / gram(0, 0), 0.0], [0.0, 0.0]]
             } else {
                 let (a, b, c) = (gram(0, 0), gram(0, 1), gram(1, 1));
-                let det = a * c - b * b;
+                let det = 4.0 * e[0].cross(&e[1]).norm_squared();
                 [[c / det, -b / det], [-b / det, a / det]]
             };
             // B = phi_xl, D x K.

@@ -12,26 +12,35 @@
 //! eight corners (their inclusion, Wang et al. 2021 sec. 4.1); computed with outward rounding,
 //! that range contains every exact value. Boxes whose range misses the cube
 //! `[-min_separation, min_separation]^3` are discarded, the others are split (the parameter
-//! whose width moves `F` most first), earliest time first; the first box whose range is
-//! narrower than `tolerance` on every axis reports contact at its earliest time.
+//! whose width moves `F` most first), earliest time first; the first box whose range lies
+//! inside the cube of half-side `1.1 min_separation + tolerance` reports contact at its
+//! earliest time (with no separation, a box narrower than `tolerance` on every axis; with
+//! one, a coarse box near the separation: the 10% slack keeps the thick contact region of a
+//! separation from being refined everywhere to `tolerance`).
 //!
 //! The guarantee, in floating point: when a pair comes within `min_separation` (in the
 //! largest coordinate, which holds the Euclidean ball) at some time `t*`, a time of impact
 //! `toi <= t*` is returned; no pair closer than that is missed. A reported time may be a
-//! false positive: the pair comes within `min_separation + tolerance` (per coordinate), or
-//! the iteration limit was reached (then the earliest time still undecided is returned).
+//! false positive, but only of two kinds: the pair does come within `1.1 min_separation +
+//! tolerance` (per coordinate) at some time of the reporting box, or the iteration limit was
+//! reached (then the earliest time still undecided is returned).
 
 use super::interval::Interval;
 use crate::Vec3;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
+/// A box every point of which is within `(1 + SEPARATION_SLACK) min_separation + tolerance`
+/// reports contact: with a separation, coarse boxes then settle a thick contact region.
+const SEPARATION_SLACK: f64 = 0.1;
+
 /// The parameters of a CCD query.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CcdSettings {
     /// The distance (per coordinate) the primitives must keep; 0 detects actual contact.
     pub min_separation: f64,
-    /// Absolute width (per coordinate) of a range that counts as touching; the default is
+    /// How much farther than `1.1 min_separation` (per coordinate) a pair may be reported;
+    /// the default is
     /// `1e-6`, for coordinates of unit size: scale it with the scene (see
     /// [`CcdSettings::for_scale`]).
     pub tolerance: f64,
@@ -227,7 +236,9 @@ impl Pair {
                 continue;
             }
             iterations += 1;
-            if range.iter().all(|r| r.hi - r.lo <= settings.tolerance)
+            // Every point of the box is within the reach: contact, or as good as.
+            let reach = ms * (1.0 + SEPARATION_SLACK) + settings.tolerance;
+            if range.iter().all(|r| r.lo >= -reach && r.hi <= reach)
                 || iterations >= settings.max_iterations
             {
                 return Some(b.t[0]);

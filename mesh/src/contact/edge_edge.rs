@@ -13,7 +13,9 @@ pub fn edge_edge_distance_kind(a0: &Vec3, a1: &Vec3, b0: &Vec3, b1: &Vec3) -> Di
     let (u, v, w) = (a1 - a0, b1 - b0, a0 - b0);
     let (a, b, c) = (u.norm_squared(), u.dot(&v), v.norm_squared());
     let (d, e) = (u.dot(&w), v.dot(&w));
-    let det = a * c - b * b;
+    // a c - b^2, without its cancellation (exactly parallel edges give a rounding-level
+    // determinant, far below the threshold).
+    let det = u.cross(&v).norm_squared();
     if det > DEGENERATE * a * c {
         let s = (b * e - c * d) / det;
         let t = (a * e - b * d) / det;

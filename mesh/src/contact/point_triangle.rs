@@ -15,7 +15,8 @@ pub(crate) const DEGENERATE: f64 = 1e-20;
 pub fn point_triangle_distance_kind(p: &Vec3, a: &Vec3, b: &Vec3, c: &Vec3) -> DistanceKind {
     let (e0, e1, ap) = (b - a, c - a, p - a);
     let (g00, g01, g11) = (e0.norm_squared(), e0.dot(&e1), e1.norm_squared());
-    let det = g00 * g11 - g01 * g01;
+    // g00 g11 - g01^2, without its cancellation.
+    let det = e0.cross(&e1).norm_squared();
     if det > DEGENERATE * g00 * g11 {
         let (r0, r1) = (e0.dot(&ap), e1.dot(&ap));
         let l1 = (g11 * r0 - g01 * r1) / det;
