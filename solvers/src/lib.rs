@@ -144,4 +144,4 @@ pub use simulation::{
 };
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
 pub use sprs;
-pub use terms::ContactSummary;
+pub use terms::{ContactSummary, SurfaceContactSpec};

@@ -65,8 +65,9 @@ type SectionCheck = fn(&Scene) -> Result<(), Fault>;
 /// Checks the cross-key rules of `scene` (read from `origin`) that serde cannot express, one
 /// section at a time, then the bounds on its steps.
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
-    let sections: [SectionCheck; 10] = [
+    let sections: [SectionCheck; 11] = [
         bodies,
+        contact,
         material_and_regions,
         selections,
         conditions,
@@ -160,6 +161,17 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
         }
     }
     Ok(())
+}
+
+/// `[contact]`: a positive reach.
+fn contact(scene: &Scene) -> Result<(), Fault> {
+    match scene.contact.as_ref().and_then(|c| c.dhat) {
+        Some(dhat) if !(dhat.is_finite() && dhat > 0.0) => Err(fault(
+            "contact.dhat",
+            format!("{dhat} must be a positive distance (m)"),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// `[material]` gives one stiffness; every `[[regions]]` entry names a selection.

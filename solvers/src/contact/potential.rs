@@ -12,6 +12,7 @@ use isochor_mesh::contact::{
     Derivatives, DistanceKind,
 };
 use isochor_mesh::Vec3;
+use nalgebra::SMatrix;
 
 /// The barrier potential with reach `dhat` (a distance) and stiffness `kappa`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -150,6 +151,27 @@ impl BarrierPotential {
         }
     }
 
+    /// The PSD-projected Hessian block of every candidate pair at `x`, in the candidates'
+    /// order (point-triangle pairs, then edge-edge pairs): the pair's four nodes and its
+    /// `12 x 12` block (zero beyond `dhat`). The nodes depend on the candidates only, so a
+    /// fixed candidate set has a fixed sparsity pattern.
+    pub fn hessian_blocks(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> Vec<([usize; 4], SMatrix<f64, 12, 12>)> {
+        pairs(surface, candidates, rest)
+            .map(|pair| {
+                let block = self
+                    .local(&pair, &pair.nodes.map(|n| x[n]))
+                    .map_or_else(SMatrix::zeros, |local| project_to_psd(&local.hessian));
+                (pair.nodes, block)
+            })
+            .collect()
+    }
+
     /// The Hessian of the potential at `x` as `(row, column, value)` triplets (duplicates
     /// add up), each pair's 12 x 12 block projected onto the positive semidefinite cone.
     pub fn hessian_triplets(
@@ -160,15 +182,15 @@ impl BarrierPotential {
         x: &[Vec3],
     ) -> Vec<(usize, usize, f64)> {
         let mut triplets = Vec::new();
-        for pair in pairs(surface, candidates, rest) {
-            if let Some(local) = self.local(&pair, &pair.nodes.map(|n| x[n])) {
-                let h = project_to_psd(&local.hessian);
-                for (i, &ni) in pair.nodes.iter().enumerate() {
-                    for (j, &nj) in pair.nodes.iter().enumerate() {
-                        for a in 0..3 {
-                            for b in 0..3 {
-                                triplets.push((3 * ni + a, 3 * nj + b, h[(3 * i + a, 3 * j + b)]));
-                            }
+        for (nodes, h) in self.hessian_blocks(surface, candidates, rest, x) {
+            if h.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            for (i, &ni) in nodes.iter().enumerate() {
+                for (j, &nj) in nodes.iter().enumerate() {
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            triplets.push((3 * ni + a, 3 * nj + b, h[(3 * i + a, 3 * j + b)]));
                         }
                     }
                 }

@@ -29,6 +29,7 @@ pub(super) fn execute(
         selections,
         zones,
         bodies,
+        surface_contact,
     } = resolve::build(scene)?;
     let body = Body::new(&problem, selections, zones);
     check_probes_at_rest(scene, &body)?;
@@ -40,6 +41,9 @@ pub(super) fn execute(
     let mut sim = Simulation::new(problem, settings)?;
     if let Some(v) = velocities {
         sim.set_velocities(v)?;
+    }
+    if let Some(spec) = surface_contact {
+        sim.set_surface_contact(spec)?;
     }
     let body_ids = (bodies.parts.len() > 1).then(|| bodies.element_bodies());
     let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids, body_ids)?;
