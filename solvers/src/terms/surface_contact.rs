@@ -14,8 +14,8 @@ use crate::contact::{BarrierPotential, StiffnessBounds};
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;
 use isochor_mesh::contact::{
-    contact_candidates, edge_edge_ccd, point_triangle_ccd, Candidates, CcdSettings, ContactSurface,
-    PairFilter,
+    contact_candidates, edge_edge_ccd, edge_edge_squared_distance, point_triangle_ccd,
+    point_triangle_squared_distance, Candidates, CcdSettings, ContactSurface, PairFilter,
 };
 use isochor_mesh::Vec3;
 use std::sync::RwLock;
@@ -176,14 +176,32 @@ impl SurfaceContact {
         let swept = contact_candidates(&self.surface, x, Some(&x1), 0.0, self.filter());
         let tris = self.surface.triangles();
         let edges = self.surface.edges();
+        // A pair whose two sides move less in all than their distance apart cannot touch
+        // over the step (the distance is 1-Lipschitz in each side's motion): no CCD needed.
+        let moves = |n: usize| (x1[n] - x[n]).norm();
+        let cannot_touch = |reach: f64, d_sq: f64| reach * reach < d_sq;
         let pt = swept.point_triangle.iter().filter_map(|&[p, t]| {
             let [a, b, c] = tris[t];
+            let reach = moves(p) + moves(a).max(moves(b)).max(moves(c));
+            if cannot_touch(
+                reach,
+                point_triangle_squared_distance(&x[p], &x[a], &x[b], &x[c]),
+            ) {
+                return None;
+            }
             point_triangle_ccd(
                 &x[p], &x[a], &x[b], &x[c], &x1[p], &x1[a], &x1[b], &x1[c], &self.ccd,
             )
         });
         let ee = swept.edge_edge.iter().filter_map(|&[i, j]| {
             let ([a0, a1], [b0, b1]) = (edges[i], edges[j]);
+            let reach = moves(a0).max(moves(a1)) + moves(b0).max(moves(b1));
+            if cannot_touch(
+                reach,
+                edge_edge_squared_distance(&x[a0], &x[a1], &x[b0], &x[b1]),
+            ) {
+                return None;
+            }
             edge_edge_ccd(
                 &x[a0], &x[a1], &x[b0], &x[b1], &x1[a0], &x1[a1], &x1[b0], &x1[b1], &self.ccd,
             )
