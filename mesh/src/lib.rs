@@ -4,12 +4,16 @@
 //! its rest data, the boundary surface, adjacency and k-rings, named selections and groups, volume
 //! zones (Sheen et al. 2021, sec. 4 and 6), the element layer of 4- and 10-node tets
 //! ([`element`]: reference elements, quadrature, isoparametric rest geometry, [`ElementMesh`]),
-//! mesh generators, [`probes`] of a deformed state, and file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`).
+//! mesh generators, [`probes`] of a deformed state, file I/O (VTU/PVD for ParaView, Gmsh `.msh`, TetGen `.node`/`.ele`),
+//! and the [`contact`] geometry of IPC (Li et al. 2020): contact surfaces, squared distances with
+//! their derivatives, the edge-edge mollifier, continuous collision detection, a broad phase and
+//! an intersection check.
 
 #![deny(missing_docs)]
 
 mod adjacency;
 mod closest;
+pub mod contact;
 pub mod element;
 mod error;
 pub mod generate;

@@ -18,3 +18,4 @@ mod pneunet;
 mod preview;
 mod regions;
 mod study;
+mod surface_contact;

@@ -14,6 +14,7 @@
 //! | layer | module | what it holds |
 //! |---|---|---|
 //! | 0 | `error` | [`SolverError`] |
+//! | 0 | [`contact`] | IPC's barrier, adaptive stiffness, smoothed friction and barrier potential (on `isochor_mesh::contact`) |
 //! | 1 | [`linear`] | sparse Cholesky, KKT `LDL^T`, CG and MINRES, orderings and shifts |
 //! | 2 | `settings` | [`Settings`]: Newton limits, tolerances, the linear solver, the volume projection |
 //! | 3 | `problem` | what a user states: the [`Problem`], its [`Method`], [`Material`]s, loads, motions, obstacles, [`Curve`]s |
@@ -107,6 +108,7 @@
 #![deny(missing_docs)]
 
 mod assembly;
+pub mod contact;
 mod error;
 pub mod linear;
 mod model;
@@ -145,4 +147,4 @@ pub use simulation::{
 };
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
 pub use sprs;
-pub use terms::ContactSummary;
+pub use terms::{ContactSummary, SurfaceContactSpec};

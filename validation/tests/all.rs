@@ -5,6 +5,7 @@
 mod assembled;
 mod common;
 mod constraints;
+mod contact_geometry;
 mod contact_term;
 mod dynamics;
 mod elements;

@@ -2,6 +2,7 @@
 
 use super::bodies::{BodyRef, BodySpec, SCENE_BODY};
 use super::conditions::{DirichletSpec, LoadsSpec};
+use super::contact::ContactSpec;
 use super::material::{MaterialSpec, RegionSpec};
 use super::mesh::MeshSpec;
 use super::names::{ElementName, MethodName};
@@ -59,6 +60,9 @@ pub struct Scene {
     /// Rigid obstacles (frictionless contact with the boundary vertices).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub obstacles: Vec<ObstacleSpec>,
+    /// Barrier contact between the bodies' surfaces and of a surface with itself.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<ContactSpec>,
     /// Zones of the `zonal` method (one global zone if absent; `kind = "none"` for none).
     #[serde(default)]
     pub zones: Option<ZonesSpec>,

@@ -68,6 +68,7 @@ type SectionCheck = fn(&Scene) -> Result<(), Fault>;
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
     let sections: [SectionCheck; 11] = [
         bodies,
+        contact,
         material_and_regions,
         selections,
         conditions,
@@ -162,6 +163,17 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
         }
     }
     Ok(())
+}
+
+/// `[contact]`: a positive reach.
+fn contact(scene: &Scene) -> Result<(), Fault> {
+    match scene.contact.as_ref().and_then(|c| c.dhat) {
+        Some(dhat) if !(dhat.is_finite() && dhat > 0.0) => Err(fault(
+            "contact.dhat",
+            format!("{dhat} must be a positive distance (m)"),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// `[material]` gives one stiffness; every `[[regions]]` entry names a selection.

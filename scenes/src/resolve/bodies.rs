@@ -50,6 +50,15 @@ impl SceneBodies {
         ids
     }
 
+    /// The body of every node of a mesh of `num_nodes` nodes.
+    pub fn node_bodies(&self, num_nodes: usize) -> Vec<usize> {
+        let mut bodies = vec![0; num_nodes];
+        for (b, part) in self.parts.iter().enumerate() {
+            part.nodes().for_each(|n| bodies[n] = b);
+        }
+        bodies
+    }
+
     /// The initial velocity of every node, or `None` if no body has one.
     pub fn initial_velocities(&self, num_nodes: usize) -> Option<Vec<Vec3>> {
         if self.velocities.iter().all(Option::is_none) {

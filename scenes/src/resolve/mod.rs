@@ -22,7 +22,11 @@ use crate::error::SceneError;
 use crate::format::{limits, validate, Scene};
 use isochor_mesh::element::Part;
 use isochor_mesh::Zones;
-use isochor_solvers::{Method, Problem, Settings, Stepping};
+use isochor_solvers::{Method, Problem, Settings, Stepping, SurfaceContactSpec};
+
+/// The default reach of the contact barrier, relative to the rest mesh's bounding-box
+/// diagonal (IPC's default, Li et al. 2020).
+pub const DEFAULT_DHAT: f64 = 1e-3;
 
 /// A scene made concrete, once: everything a run needs.
 #[derive(Debug, Clone)]
@@ -39,6 +43,8 @@ pub struct ResolvedScene {
     pub zones: Option<Zones>,
     /// Where each body lies in the mesh, and its initial velocity.
     pub bodies: SceneBodies,
+    /// Barrier contact between surfaces, if the scene has `[contact]`.
+    pub surface_contact: Option<SurfaceContactSpec>,
 }
 
 /// Resolves a scene: checks that its estimated memory fits ([`limits`]), builds every body's
@@ -71,6 +77,14 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         ..problem::settings(&scene.solver)
     };
     let stepping = problem::stepping(&scene.stepping);
+    let surface_contact = scene.contact.as_ref().map(|c| {
+        let (lo, hi) = mesh.mesh.corners().bounding_box();
+        SurfaceContactSpec {
+            dhat: c.dhat.unwrap_or(DEFAULT_DHAT * (hi - lo).norm()),
+            self_contact: c.self_contact,
+            node_bodies: bodies.node_bodies(mesh.mesh.num_nodes()),
+        }
+    });
     let problem = Problem {
         mesh: mesh.mesh,
         method,
@@ -95,5 +109,6 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         selections,
         zones,
         bodies,
+        surface_contact,
     })
 }

@@ -34,6 +34,11 @@ pub struct System<'m> {
     /// Start of each term's block in `hessian_values`; the last block is the constraints'
     /// geometric stiffness.
     offsets: Vec<usize>,
+    /// The `(dof, dof)` pairs of every block, in order (a changing surface-contact block is
+    /// spliced in place).
+    pairs: Vec<(usize, usize)>,
+    /// How many times the surface-contact pairs changed the pattern.
+    pub pattern_rebuilds: usize,
     pub hessian: Layout,
     pub hessian_values: Vec<f64>,
     /// Constraint Jacobian layout and values (saddle-point and dual strategies).
@@ -65,6 +70,9 @@ impl<'m> System<'m> {
         if let Some(c) = &model.contact {
             push(c.hessian_pattern());
         }
+        if let Some(c) = &model.surface_contact {
+            push(c.hessian_pattern());
+        }
         if let Some(i) = &inertia {
             push(i.hessian_pattern());
         }
@@ -92,6 +100,8 @@ impl<'m> System<'m> {
             settings,
             hessian_values: vec![0.0; pairs.len()],
             offsets,
+            pairs,
+            pattern_rebuilds: 0,
             hessian,
             jacobian,
             jacobian_values: vec![0.0; jacobian_len],
@@ -108,7 +118,49 @@ impl<'m> System<'m> {
             .map(|t| t.as_ref() as &dyn EnergyTerm)
             .chain(self.model.augmented.iter().map(|a| a as &dyn EnergyTerm))
             .chain(self.model.contact.iter().map(|c| c as &dyn EnergyTerm))
+            .chain(
+                self.model
+                    .surface_contact
+                    .iter()
+                    .map(|c| c as &dyn EnergyTerm),
+            )
             .chain(self.inertia.iter().map(|i| i as &dyn EnergyTerm))
+    }
+
+    /// Takes the surface-contact pairs at `x` as the pattern's; when they changed, rebuilds
+    /// the Hessian layout with the new contact block and returns `true` (the solvers then
+    /// redo their symbolic analysis). Without surface contact, `false`.
+    pub fn update_contact_pattern(&mut self, x: &[Vec3]) -> Result<bool, SolverError> {
+        let Some(contact) = &self.model.surface_contact else {
+            return Ok(false);
+        };
+        if !contact.update(x) {
+            return Ok(false);
+        }
+        // The block's index: the model's terms, then the folded constraints, the obstacles.
+        let block = self.model.terms.len()
+            + usize::from(self.model.augmented.is_some())
+            + usize::from(self.model.contact.is_some());
+        let (start, end) = (self.offsets[block], self.offsets[block + 1]);
+        let new = contact.hessian_pattern();
+        let grown = new.len() as isize - (end - start) as isize;
+        self.pairs.splice(start..end, new);
+        for offset in &mut self.offsets[block + 1..] {
+            *offset = (*offset as isize + grown) as usize;
+        }
+        self.hessian = Layout::hessian(&self.pairs, &self.model.dofs)?;
+        self.hessian_values = vec![0.0; self.pairs.len()];
+        self.pattern_rebuilds += 1;
+        Ok(true)
+    }
+
+    /// The largest step along `direction` (three entries per node) from `x` that no pair of
+    /// surfaces crosses ([`crate::terms::SurfaceContact::max_step`]); 1 without surface contact.
+    pub fn max_step(&self, x: &[Vec3], direction: &[f64]) -> f64 {
+        self.model
+            .surface_contact
+            .as_ref()
+            .map_or(1.0, |c| c.max_step(x, direction))
     }
 
     /// Energy (and gradient) of all terms at `x`, without touching the Hessian.

@@ -11,10 +11,12 @@ use crate::terms::{
     AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces,
     FollowerPressure,
 };
+use crate::terms::{SurfaceContact, SurfaceContactSpec};
 use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
     PerElementConstraints, ZonalConstraints,
 };
+use isochor_mesh::contact::ContactSurface;
 use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
@@ -55,6 +57,8 @@ pub struct Model {
     pub augmented: Option<AugmentedConstraints>,
     /// Contact of the boundary vertices against the problem's obstacles.
     pub contact: Option<Contact>,
+    /// Barrier contact between surfaces (between bodies, and of a surface with itself).
+    pub surface_contact: Option<SurfaceContact>,
     /// Rest volume measured by each constraint row (scales the constraint residual).
     pub row_volumes: Vec<f64>,
     /// The material of every element (stresses and output pressures).
@@ -304,9 +308,22 @@ impl Model {
             curve_corners,
             mu,
             contact,
+            surface_contact: None,
         };
         model.set_contact_stiffness(None);
         Ok(model)
+    }
+
+    /// Turns barrier contact between the boundary surfaces on (every 6-node face as its four
+    /// 3-node triangles), its stiffness bounded for the shear stiffness `mu h` of a node's
+    /// cells (Li et al. 2020, supplement).
+    pub fn set_surface_contact(&mut self, spec: SurfaceContactSpec) -> Result<(), SolverError> {
+        let surface = ContactSurface::from_element_surface(&self.mesh.boundary()?);
+        let corners = self.mesh.corners();
+        let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
+        let contact = SurfaceContact::new(spec, surface, self.mesh.nodes().to_vec(), self.mu * h)?;
+        self.surface_contact = Some(contact);
+        Ok(())
     }
 
     /// Sets the contact penalty of every candidate vertex to

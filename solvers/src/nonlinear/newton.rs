@@ -1,7 +1,8 @@
 //! Newton's method on the total energy (methods `standard` and `condensed`, and the primal
 //! step of `dual`): a sparse Cholesky step, shifted until positive definite, and a
 //! backtracking line search that rejects states outside the energy's domain (inverted
-//! elements under `log J`) and enforces sufficient decrease (Armijo).
+//! elements under `log J`) and enforces sufficient decrease (Armijo), starting from the
+//! longest step no pair of contact surfaces crosses.
 
 use crate::assembly::{Evaluation, System};
 use crate::error::SolverError;
@@ -162,6 +163,10 @@ impl Newton {
         let settings = system.settings;
         let dofs = &system.model.dofs;
         for _ in 0..iterations {
+            if system.update_contact_pattern(x)? {
+                // New contact pairs: the pattern changed, so does the symbolic analysis.
+                self.linear = Newton::new(system)?.linear;
+            }
             let Linearized {
                 eval,
                 d_fixed,
@@ -202,7 +207,8 @@ impl Newton {
             // Energy differences below this are rounding noise; there, a smaller gradient
             // decides instead of the Armijo condition.
             let noise = 1e3 * f64::EPSILON * eval.magnitude;
-            let mut alpha = 1.0;
+            // No surface pair may cross on the way (continuous collision detection).
+            let mut alpha = system.max_step(x, &direction);
             let mut accepted = None;
             for backtracks in 0..=settings.max_backtracks {
                 let mut trial = x.to_vec();

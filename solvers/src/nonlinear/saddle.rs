@@ -299,6 +299,10 @@ impl SaddleNewton {
             state.p_k.new_step();
         }
         for _ in 0..settings.max_iterations {
+            if system.update_contact_pattern(x)? {
+                // New contact pairs: the pattern changed, so does the symbolic analysis.
+                *self = SaddleNewton::new(system)?;
+            }
             let Linearized {
                 d_fixed,
                 sigma_f,
@@ -347,7 +351,8 @@ impl SaddleNewton {
                         || merit0 <= 100.0
                         || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0)
             };
-            let mut alpha = 1.0;
+            // No surface pair may cross on the way (continuous collision detection).
+            let mut alpha = system.max_step(x, &direction);
             let mut accepted = None;
             for backtracks in 0..=settings.max_backtracks {
                 let mut trial_x = x.to_vec();
@@ -382,7 +387,13 @@ impl SaddleNewton {
                         add_scaled(&mut corrected_x, &full, 1.0);
                         let corrected_p: Vec<f64> =
                             trial_p.iter().zip(&cp).map(|(a, b)| a + b).collect();
-                        if system.is_valid(&corrected_x) {
+                        // The corrected state is reached from `x` in a straight line too.
+                        let path: Vec<f64> = corrected_x
+                            .iter()
+                            .zip(x.iter())
+                            .flat_map(|(c, a)| (c - a).iter().copied().collect::<Vec<_>>())
+                            .collect();
+                        if system.is_valid(&corrected_x) && system.max_step(x, &path) == 1.0 {
                             let (s, t) =
                                 self.residuals(system, &corrected_x, &corrected_p, &target.level)?;
                             if acceptable(merit(&system.model.dofs.gather(&s), &t), 1.0) {

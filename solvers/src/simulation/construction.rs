@@ -7,6 +7,7 @@ use crate::model::{Model, NonlinearScheme};
 use crate::problem::schedule::LoadLevel;
 use crate::problem::Problem;
 use crate::settings::{LinearSolver, Settings};
+use crate::terms::SurfaceContactSpec;
 use isochor_mesh::Vec3;
 
 impl Simulation {
@@ -56,6 +57,14 @@ impl Simulation {
             resume: None,
             rest_external,
         })
+    }
+
+    /// Turns barrier contact between the mesh's boundary surfaces on (between bodies, and of
+    /// a surface with itself if `spec.self_contact`): every line-search step of every method
+    /// is then limited so that no pair of surface triangles crosses. Errors: a bad `dhat` or
+    /// a body list of another length than the nodes.
+    pub fn set_surface_contact(&mut self, spec: SurfaceContactSpec) -> Result<(), SolverError> {
+        self.model.set_surface_contact(spec)
     }
 
     /// Sets the velocity of every node (the initial velocity of a dynamic run; quasi-static

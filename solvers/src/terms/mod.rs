@@ -10,6 +10,7 @@ mod epidermis;
 mod faces;
 mod inertia;
 mod pressure;
+mod surface_contact;
 
 pub use augmented::AugmentedConstraints;
 pub use contact::{Contact, ContactState, ContactSummary};
@@ -19,6 +20,7 @@ pub use epidermis::EpidermisTerm;
 pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
+pub use surface_contact::{SurfaceContact, SurfaceContactSpec};
 
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;

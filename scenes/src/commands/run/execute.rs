@@ -29,6 +29,7 @@ pub(super) fn execute(
         selections,
         zones,
         bodies,
+        surface_contact,
     } = resolve::build(scene)?;
     let body = Body::new(&problem, selections, zones);
     check_probes_at_rest(scene, &body)?;
@@ -40,6 +41,9 @@ pub(super) fn execute(
     let mut sim = Simulation::new(problem, settings)?;
     if let Some(v) = velocities {
         sim.set_velocities(v)?;
+    }
+    if let Some(spec) = surface_contact {
+        sim.set_surface_contact(spec)?;
     }
     // Only a run that has got this far replaces what an earlier run left.
     if let Some(dir) = out.as_mut() {

@@ -1,0 +1,217 @@
+//! The barrier potential of IPC over a set of candidate pairs (Li et al. 2020, eq. 5 and
+//! 12): `kappa sum_PT b(d) + kappa sum_EE e_k b(d)`, each pair at its closest-feature
+//! distance, edge-edge pairs mollified; with its gradient and the PSD-projected Hessian of
+//! every pair, on the global vector of node positions (three coordinates per node). Pairs
+//! are IPC's: a point-edge distance reached from two triangles counts twice.
+
+use super::barrier::{barrier, barrier_first_derivative, barrier_second_derivative};
+use isochor_energies::project_to_psd;
+use isochor_mesh::contact::{
+    edge_edge_distance_kind, edge_edge_mollifier, edge_edge_mollifier_derivatives,
+    edge_edge_mollifier_threshold, point_triangle_distance_kind, Candidates, ContactSurface,
+    Derivatives, DistanceKind,
+};
+use isochor_mesh::Vec3;
+use nalgebra::SMatrix;
+
+/// The barrier potential with reach `dhat` (a distance) and stiffness `kappa`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BarrierPotential {
+    /// The distance below which the barrier acts.
+    pub dhat: f64,
+    /// The barrier stiffness.
+    pub kappa: f64,
+}
+
+/// A pair of the candidate set: its four nodes, and for edge-edge pairs the mollifier
+/// threshold at rest.
+struct Pair {
+    nodes: [usize; 4],
+    eps_x: Option<f64>,
+}
+
+fn pairs<'a>(
+    surface: &'a ContactSurface,
+    candidates: &'a Candidates,
+    rest: &'a [Vec3],
+) -> impl Iterator<Item = Pair> + 'a {
+    let tris = surface.triangles();
+    let edges = surface.edges();
+    let pt = candidates.point_triangle.iter().map(move |&[p, t]| Pair {
+        nodes: [p, tris[t][0], tris[t][1], tris[t][2]],
+        eps_x: None,
+    });
+    let ee = candidates.edge_edge.iter().map(move |&[i, j]| {
+        let nodes = [edges[i][0], edges[i][1], edges[j][0], edges[j][1]];
+        let r = nodes.map(|n| rest[n]);
+        Pair {
+            nodes,
+            eps_x: Some(edge_edge_mollifier_threshold(&r[0], &r[1], &r[2], &r[3])),
+        }
+    });
+    pt.chain(ee)
+}
+
+impl Pair {
+    fn kind(&self, x: &[Vec3; 4]) -> DistanceKind {
+        match self.eps_x {
+            None => point_triangle_distance_kind(&x[0], &x[1], &x[2], &x[3]),
+            Some(_) => edge_edge_distance_kind(&x[0], &x[1], &x[2], &x[3]),
+        }
+    }
+}
+
+impl BarrierPotential {
+    fn dhat_sq(&self) -> f64 {
+        self.dhat * self.dhat
+    }
+
+    /// The potential at node positions `x` (`rest`: the rest positions, for the mollifier);
+    /// `+inf` when a pair touches.
+    pub fn energy(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> f64 {
+        pairs(surface, candidates, rest)
+            .map(|pair| {
+                let y = pair.nodes.map(|n| x[n]);
+                let b = barrier(pair.kind(&y).squared_distance(&y), self.dhat_sq());
+                let mollifier = pair.eps_x.map_or(1.0, |eps| edge_edge_mollifier(&y, eps));
+                // A zero mollifier (parallel edges) times a zero barrier (beyond dhat) is 0.
+                if b == 0.0 {
+                    0.0
+                } else {
+                    self.kappa * mollifier * b
+                }
+            })
+            .sum()
+    }
+
+    /// The pair's potential with its gradient and (unprojected) Hessian, `None` beyond
+    /// `dhat`.
+    fn local(&self, pair: &Pair, y: &[Vec3; 4]) -> Option<Derivatives<12>> {
+        let d = pair.kind(y).derivatives(y);
+        if d.value >= self.dhat_sq() {
+            return None;
+        }
+        let (b, b1, b2) = (
+            barrier(d.value, self.dhat_sq()),
+            barrier_first_derivative(d.value, self.dhat_sq()),
+            barrier_second_derivative(d.value, self.dhat_sq()),
+        );
+        // The barrier of the distance: b, b' grad d, b'' grad d grad d^T + b' hess d.
+        let barrier = Derivatives {
+            value: b,
+            gradient: d.gradient * b1,
+            hessian: d.gradient * d.gradient.transpose() * b2 + d.hessian * b1,
+        };
+        let local = match pair.eps_x {
+            None => barrier,
+            Some(eps) => {
+                // The product rule with the mollifier m.
+                let m = edge_edge_mollifier_derivatives(y, eps);
+                let cross = m.gradient * barrier.gradient.transpose();
+                Derivatives {
+                    value: m.value * barrier.value,
+                    gradient: barrier.gradient * m.value + m.gradient * barrier.value,
+                    hessian: barrier.hessian * m.value
+                        + m.hessian * barrier.value
+                        + cross
+                        + cross.transpose(),
+                }
+            }
+        };
+        Some(Derivatives {
+            value: self.kappa * local.value,
+            gradient: local.gradient * self.kappa,
+            hessian: local.hessian * self.kappa,
+        })
+    }
+
+    /// Adds the gradient of the potential at `x` to `gradient` (three entries per node).
+    pub fn add_gradient(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+        gradient: &mut [f64],
+    ) {
+        for pair in pairs(surface, candidates, rest) {
+            if let Some(local) = self.local(&pair, &pair.nodes.map(|n| x[n])) {
+                for (i, &n) in pair.nodes.iter().enumerate() {
+                    for a in 0..3 {
+                        gradient[3 * n + a] += local.gradient[3 * i + a];
+                    }
+                }
+            }
+        }
+    }
+
+    /// The PSD-projected Hessian block of every candidate pair at `x`, in the candidates'
+    /// order (point-triangle pairs, then edge-edge pairs): the pair's four nodes and its
+    /// `12 x 12` block (zero beyond `dhat`). The nodes depend on the candidates only, so a
+    /// fixed candidate set has a fixed sparsity pattern.
+    pub fn hessian_blocks(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> Vec<([usize; 4], SMatrix<f64, 12, 12>)> {
+        pairs(surface, candidates, rest)
+            .map(|pair| {
+                let block = self
+                    .local(&pair, &pair.nodes.map(|n| x[n]))
+                    .map_or_else(SMatrix::zeros, |local| project_to_psd(&local.hessian));
+                (pair.nodes, block)
+            })
+            .collect()
+    }
+
+    /// The Hessian of the potential at `x` as `(row, column, value)` triplets (duplicates
+    /// add up), each pair's 12 x 12 block projected onto the positive semidefinite cone.
+    pub fn hessian_triplets(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> Vec<(usize, usize, f64)> {
+        let mut triplets = Vec::new();
+        for (nodes, h) in self.hessian_blocks(surface, candidates, rest, x) {
+            if h.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            for (i, &ni) in nodes.iter().enumerate() {
+                for (j, &nj) in nodes.iter().enumerate() {
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            triplets.push((3 * ni + a, 3 * nj + b, h[(3 * i + a, 3 * j + b)]));
+                        }
+                    }
+                }
+            }
+        }
+        triplets
+    }
+
+    /// The smallest distance (not squared) over the candidate pairs at `x`; `+inf` for none.
+    pub fn min_distance(
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> f64 {
+        pairs(surface, candidates, rest)
+            .map(|pair| {
+                let y = pair.nodes.map(|n| x[n]);
+                pair.kind(&y).squared_distance(&y)
+            })
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
+}
