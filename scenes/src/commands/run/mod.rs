@@ -15,7 +15,7 @@ mod options;
 mod records;
 mod resume;
 
-pub use options::RunOptions;
+pub use options::{RunOptions, StepHook};
 pub use resume::resume_run;
 
 use crate::error::SceneError;
@@ -65,6 +65,7 @@ pub fn run_named(
             variant: variant.map(str::to_string),
             overrides: options::recorded(overrides),
             checkpoint_every,
+            on_step: None,
         },
     )
 }
