@@ -1,6 +1,6 @@
 //! The `isochor` Python package's native module, `isochor._isochor`: scenes from Python
-//! ([`scene`]), runs with their results as numpy arrays ([`run`], [`frames`]), and meshes
-//! read from files ([`mesh`]). Built by maturin as an abi3 extension (CPython >= 3.11); the
+//! (`scene`), runs with their results as numpy arrays (`run`, `frames`), and meshes
+//! read from files (`mesh`). Built by maturin as an abi3 extension (CPython >= 3.11); the
 //! pure-Python parts of the package (`isochor/__init__.py`) wrap it. docs/python.md is the
 //! user's page.
 

@@ -6,8 +6,8 @@ use crate::frames::{Frame, FrameData};
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 use isochor_mesh::{ElementMesh, PhysicalGroups};
-use isochor_scenes::record::StepRecord;
 use isochor_scenes::commands::run::StepHook;
+use isochor_scenes::record::StepRecord;
 use isochor_scenes::{resolve, run_scene, RunOptions};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -56,7 +56,10 @@ const COLUMNS: &[Column] = &[
     ("max_penetration", |s| s.contact.max_penetration),
 ];
 
-const COUNTS: &[(&str, fn(&StepRecord) -> usize)] = &[
+/// The per-step counts of the history: `(name, count of a step)`.
+type Count = (&'static str, fn(&StepRecord) -> usize);
+
+const COUNTS: &[Count] = &[
     ("step", |s| s.step),
     ("newton_iterations", |s| s.newton_iterations),
     ("cuts", |s| s.cuts.len()),
@@ -169,11 +172,7 @@ fn hook(
             if let Some(f) = &progress {
                 f.call1(
                     py,
-                    (
-                        frame.index,
-                        frame.state.t,
-                        frame.report.newton_iterations(),
-                    ),
+                    (frame.index, frame.state.t, frame.report.newton_iterations()),
                 )?;
             }
             Ok::<(), PyErr>(())
@@ -207,7 +206,11 @@ pub fn run(
     let mesh: Arc<ElementMesh> = Arc::new(mesh);
     let collected = Arc::new(Mutex::new(Collected::default()));
     if frames {
-        collected.lock().unwrap().frames.push(FrameData::rest(&mesh));
+        collected
+            .lock()
+            .unwrap()
+            .frames
+            .push(FrameData::rest(&mesh));
     }
     let mut options = RunOptions::in_memory(scene.variant_name(), scene.override_list(), false);
     options.out = out;

@@ -108,9 +108,8 @@ impl Scene {
     #[pyo3(signature = (scene, base_dir=None))]
     fn from_dict(scene: &Bound<'_, PyDict>, base_dir: Option<PathBuf>) -> PyResult<Scene> {
         let value = to_toml(scene.as_any(), "")?;
-        let text = toml::to_string(&value).map_err(|e| {
-            crate::errors::SceneError::new_err(format!("scene from a dict: {e}"))
-        })?;
+        let text = toml::to_string(&value)
+            .map_err(|e| crate::errors::SceneError::new_err(format!("scene from a dict: {e}")))?;
         Scene::new(
             text_source(text, "scene from a dict", base_dir),
             None,
@@ -132,9 +131,8 @@ impl Scene {
     /// The scene with `key` (a flat name such as `nu`, `res`, `method`, or a dotted path such
     /// as `material.nu`) set to `value` (bool, int, float, str, list, dict, numpy values).
     fn set(&self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<Scene> {
-        check_key_syntax(key).map_err(|m| {
-            crate::errors::SceneError::new_err(format!("key '{key}': {m}"))
-        })?;
+        check_key_syntax(key)
+            .map_err(|m| crate::errors::SceneError::new_err(format!("key '{key}': {m}")))?;
         self.with(vec![Override::new(key, to_toml(value, key)?)])
     }
 
