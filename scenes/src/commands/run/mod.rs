@@ -16,7 +16,7 @@ mod records;
 mod resume;
 mod verify;
 
-pub use options::RunOptions;
+pub use options::{RunOptions, StepHook};
 pub use resume::resume_run;
 
 use crate::error::SceneError;
@@ -74,6 +74,7 @@ pub fn run_named(
             variant: variant.map(str::to_string),
             overrides: options::recorded(overrides),
             checkpoint_every,
+            on_step: None,
         },
     )
 }

@@ -111,6 +111,9 @@ impl<'a> Observer<'a> {
                 self.error = Some(e);
             }
         }
+        if let Some(hook) = &self.options.on_step {
+            (hook.0)(frame);
+        }
         self.bar.set_position(frame.progress.levels as u64);
         self.bar.set_message(format!(
             "{} Newton iterations",

@@ -1,7 +1,21 @@
 //! How a run is asked for.
 
 use crate::format::Override;
+use isochor_solvers::Frame;
+use std::fmt;
 use std::path::PathBuf;
+use std::sync::Arc;
+
+/// A function a library caller gives a run, called with every accepted step after the run has
+/// recorded it (to copy the step's fields out of the run, or to report its progress).
+#[derive(Clone)]
+pub struct StepHook(pub Arc<dyn Fn(&Frame<'_>) + Send + Sync>);
+
+impl fmt::Debug for StepHook {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("StepHook")
+    }
+}
 
 /// How to run.
 #[derive(Debug, Clone, Default)]
@@ -17,6 +31,8 @@ pub struct RunOptions {
     /// Write a checkpoint into the output folder every this many accepted steps (and at the
     /// end), so that an interrupted run can be resumed (needs `out`).
     pub checkpoint_every: Option<usize>,
+    /// Called with every accepted step (none: the command line's runs).
+    pub on_step: Option<StepHook>,
 }
 
 impl RunOptions {
@@ -29,6 +45,7 @@ impl RunOptions {
             variant,
             overrides: recorded(overrides),
             checkpoint_every: None,
+            on_step: None,
         }
     }
 }

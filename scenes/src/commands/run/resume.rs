@@ -25,6 +25,7 @@ pub fn resume_run(dir: &Path, progress: bool) -> Result<(RunResult, Option<PathB
         variant: checkpoint.variant.clone(),
         overrides: checkpoint.overrides.clone(),
         checkpoint_every: Some(checkpoint.every),
+        on_step: None,
     };
     let scene = checkpoint.scene.clone();
     execute(&scene, &options, Some(out), Some(checkpoint))
