@@ -185,7 +185,8 @@ fn ambiguous_and_curve_groups_say_what_they_are() {
             ),
         )
         .unwrap();
-        let resolved = mesh_with_groups(scene.mesh.as_ref().unwrap(), scene.element(), true).unwrap();
+        let resolved =
+            mesh_with_groups(scene.mesh.as_ref().unwrap(), scene.element(), true).unwrap();
         let s = Selections::new(&resolved, &scene.selections).unwrap();
         s.vertices("base").map(|_| ())
     };
