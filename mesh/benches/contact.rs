@@ -5,8 +5,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use isochor_mesh::contact::{
-    contact_candidates, edge_edge_distance_kind, point_triangle_distance_kind,
-    read_ccd_queries, CcdQuery, CcdSettings, ContactSurface, PairFilter, QueryKind,
+    contact_candidates, edge_edge_distance_kind, point_triangle_distance_kind, read_ccd_queries,
+    CcdQuery, CcdSettings, ContactSurface, PairFilter, QueryKind,
 };
 use isochor_mesh::generate::ball;
 use isochor_mesh::{BoundarySurface, Vec3};
@@ -18,7 +18,11 @@ fn two_balls(res: usize, gap: f64) -> (ContactSurface, Vec<Vec3>) {
     let one = ball(1.0, res).expect("ball");
     let n = one.num_vertices();
     let mut x = one.positions().to_vec();
-    x.extend(one.positions().iter().map(|p| p + Vec3::new(2.0 + gap, 0.0, 0.0)));
+    x.extend(
+        one.positions()
+            .iter()
+            .map(|p| p + Vec3::new(2.0 + gap, 0.0, 0.0)),
+    );
     let surface = BoundarySurface::new(&one).expect("surface");
     let mut triangles = surface.triangles().to_vec();
     triangles.extend(surface.triangles().iter().map(|t| t.map(|v| v + n)));
@@ -49,7 +53,13 @@ fn bench(c: &mut Criterion) {
     let moved: Vec<Vec3> = x
         .iter()
         .enumerate()
-        .map(|(i, p)| if i * 2 < x.len() { p + Vec3::new(0.005, 0.0, 0.0) } else { *p })
+        .map(|(i, p)| {
+            if i * 2 < x.len() {
+                p + Vec3::new(0.005, 0.0, 0.0)
+            } else {
+                *p
+            }
+        })
         .collect();
     let swept = contact_candidates(&surface, &x, Some(&moved), 0.0, PairFilter::All);
     eprintln!(
@@ -62,10 +72,26 @@ fn bench(c: &mut Criterion) {
         swept.len()
     );
     c.bench_function("broad phase within dhat (9.6k triangles)", |b| {
-        b.iter(|| black_box(contact_candidates(&surface, &x, None, dhat, PairFilter::All)))
+        b.iter(|| {
+            black_box(contact_candidates(
+                &surface,
+                &x,
+                None,
+                dhat,
+                PairFilter::All,
+            ))
+        })
     });
     c.bench_function("broad phase swept (9.6k triangles)", |b| {
-        b.iter(|| black_box(contact_candidates(&surface, &x, Some(&moved), 0.0, PairFilter::All)))
+        b.iter(|| {
+            black_box(contact_candidates(
+                &surface,
+                &x,
+                Some(&moved),
+                0.0,
+                PairFilter::All,
+            ))
+        })
     });
     let tris = surface.triangles();
     let edges = surface.edges();
@@ -78,7 +104,12 @@ fn bench(c: &mut Criterion) {
                 sum += kind.derivatives(&y).hessian[(0, 0)];
             }
             for &[i, j] in &candidates.edge_edge {
-                let y = [x[edges[i][0]], x[edges[i][1]], x[edges[j][0]], x[edges[j][1]]];
+                let y = [
+                    x[edges[i][0]],
+                    x[edges[i][1]],
+                    x[edges[j][0]],
+                    x[edges[j][1]],
+                ];
                 let kind = edge_edge_distance_kind(&y[0], &y[1], &y[2], &y[3]);
                 sum += kind.derivatives(&y).hessian[(0, 0)];
             }

@@ -99,7 +99,11 @@ fn check_kind_with_step(kind: DistanceKind, x: &[Vec3; 4], step: f64) -> Result<
     let h = step.min(1e-2 * d.value.sqrt()).max(1e-10);
     let fd_g = fd_gradient(|y| kind.squared_distance(y), x, h);
     close("gradient", &d.gradient, &fd_g, d.value.sqrt())?;
-    let fd_h = fd_hessian(|y| kind.derivatives(y).gradient, x, STEP.min(step.sqrt() * 1e-3));
+    let fd_h = fd_hessian(
+        |y| kind.derivatives(y).gradient,
+        x,
+        STEP.min(step.sqrt() * 1e-3),
+    );
     close("hessian", &d.hessian, &fd_h, 1.0)?;
     prop_assert!((d.hessian - d.hessian.transpose()).amax() <= 1e-12 * d.hessian.amax());
     Ok(())
@@ -132,7 +136,10 @@ fn brute_force(x: &[Vec3; 4], triangle: bool) -> f64 {
 fn check_minimum(d: f64, x: &[Vec3; 4], triangle: bool) -> Result<(), TestCaseError> {
     let grid = brute_force(x, triangle);
     let size: f64 = x.iter().map(|p| p.norm()).fold(0.0, f64::max) + 1.0;
-    prop_assert!(d <= grid + 1e-12, "classified {d:e} above the grid's {grid:e}");
+    prop_assert!(
+        d <= grid + 1e-12,
+        "classified {d:e} above the grid's {grid:e}"
+    );
     let spacing = 3.0 * size / 300.0;
     prop_assert!(
         grid.sqrt() <= d.sqrt() + spacing,
@@ -293,7 +300,11 @@ fn check_mollifier(x: &[Vec3; 4], eps: f64) -> Result<(), TestCaseError> {
     prop_assume!((c.value - eps).abs() > 100.0 * STEP * c.gradient.amax());
     let fd = fd_gradient(|y| edge_edge_mollifier(y, eps), x, STEP);
     close("mollifier gradient", &m.gradient, &fd, 1.0 / eps)?;
-    let fd = fd_hessian(|y| edge_edge_mollifier_derivatives(y, eps).gradient, x, STEP);
+    let fd = fd_hessian(
+        |y| edge_edge_mollifier_derivatives(y, eps).gradient,
+        x,
+        STEP,
+    );
     close("mollifier hessian", &m.hessian, &fd, 1.0 / eps)?;
     Ok(())
 }
@@ -385,11 +396,24 @@ fn ccd_point_through_a_triangle() {
     }
     // The same, the triangle moving instead.
     let up = Vec3::new(0.0, 0.0, 2.0);
-    let toi = point_triangle_ccd(&p0, &a, &b, &c, &p0, &(a + up), &(b + up), &(c + up), &settings(0.0));
+    let toi = point_triangle_ccd(
+        &p0,
+        &a,
+        &b,
+        &c,
+        &p0,
+        &(a + up),
+        &(b + up),
+        &(c + up),
+        &settings(0.0),
+    );
     assert!(toi.is_some_and(|t| t <= 0.5 && t > 0.5 - 1e-5));
     // Passing beside the triangle: safe.
     let (q0, q1) = (Vec3::new(3.0, 3.0, 1.0), Vec3::new(3.0, 3.0, -1.0));
-    assert_eq!(point_triangle_ccd(&q0, &a, &b, &c, &q1, &a, &b, &c, &settings(0.0)), None);
+    assert_eq!(
+        point_triangle_ccd(&q0, &a, &b, &c, &q1, &a, &b, &c, &settings(0.0)),
+        None
+    );
 }
 
 #[test]
@@ -399,12 +423,28 @@ fn ccd_parallel_edges_sliding() {
     for (gap, touching) in [(1e-3, false), (0.0, true)] {
         let (b0, b1) = (Vec3::new(-0.5, 0.0, gap), Vec3::new(0.5, 0.0, gap));
         let toi = edge_edge_ccd(
-            &a0, &a1, &b0, &b1, &a0, &a1, &(b0 + slide), &(b1 + slide), &settings(0.0),
+            &a0,
+            &a1,
+            &b0,
+            &b1,
+            &a0,
+            &a1,
+            &(b0 + slide),
+            &(b1 + slide),
+            &settings(0.0),
         );
         assert_eq!(toi.is_some(), touching, "gap {gap}: {toi:?}");
         // Kept apart by more than the gap: contact from the start.
         let toi = edge_edge_ccd(
-            &a0, &a1, &b0, &b1, &a0, &a1, &(b0 + slide), &(b1 + slide), &settings(2e-3),
+            &a0,
+            &a1,
+            &b0,
+            &b1,
+            &a0,
+            &a1,
+            &(b0 + slide),
+            &(b1 + slide),
+            &settings(2e-3),
         );
         assert_eq!(toi, Some(0.0));
     }
@@ -412,21 +452,37 @@ fn ccd_parallel_edges_sliding() {
 
 #[test]
 fn ccd_zero_motion_and_start_at_the_separation() {
-    let (a, b, c) = (Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+    let (a, b, c) = (
+        Vec3::zeros(),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    );
     let p = Vec3::new(0.2, 0.2, 0.1);
     // No motion, apart: safe; closer than the separation: contact at once.
-    assert_eq!(point_triangle_ccd(&p, &a, &b, &c, &p, &a, &b, &c, &settings(0.05)), None);
-    assert_eq!(point_triangle_ccd(&p, &a, &b, &c, &p, &a, &b, &c, &settings(0.2)), Some(0.0));
+    assert_eq!(
+        point_triangle_ccd(&p, &a, &b, &c, &p, &a, &b, &c, &settings(0.05)),
+        None
+    );
+    assert_eq!(
+        point_triangle_ccd(&p, &a, &b, &c, &p, &a, &b, &c, &settings(0.2)),
+        Some(0.0)
+    );
     // Starting exactly at the separation and moving closer: no safe step at all.
     let p1 = Vec3::new(0.2, 0.2, -0.5);
     let toi = point_triangle_ccd(&p, &a, &b, &c, &p1, &a, &b, &c, &settings(0.1)).unwrap();
     assert!(toi < 1e-5, "{toi}");
     // Moving away from the separation: safe.
     let away = Vec3::new(0.2, 0.2, 0.5);
-    assert_eq!(point_triangle_ccd(&p, &a, &b, &c, &away, &a, &b, &c, &settings(0.099)), None);
+    assert_eq!(
+        point_triangle_ccd(&p, &a, &b, &c, &away, &a, &b, &c, &settings(0.099)),
+        None
+    );
     // Non-finite input: no safe step.
     let nan = Vec3::new(f64::NAN, 0.0, 0.0);
-    assert_eq!(point_triangle_ccd(&nan, &a, &b, &c, &p, &a, &b, &c, &settings(0.0)), Some(0.0));
+    assert_eq!(
+        point_triangle_ccd(&nan, &a, &b, &c, &p, &a, &b, &c, &settings(0.0)),
+        Some(0.0)
+    );
 }
 
 /// The benchmark's folders, each a set with a `vertex-face` and/or an `edge-edge` folder.
@@ -454,10 +510,16 @@ fn ccd_benchmark_has_no_false_negative() {
             let mut tally = CcdTally::default();
             for file in files {
                 let queries = read_ccd_queries(&file, QueryKind::from_path(&file)).unwrap();
-                assert!(queries.iter().all(|q| q.rounding == 0.0), "{file:?}: inexact");
+                assert!(
+                    queries.iter().all(|q| q.rounding == 0.0),
+                    "{file:?}: inexact"
+                );
                 tally = tally.plus(CcdTally::of(&queries, &CcdSettings::default()));
             }
-            println!("{}/{kind}: {tally}", set.file_name().unwrap().to_string_lossy());
+            println!(
+                "{}/{kind}: {tally}",
+                set.file_name().unwrap().to_string_lossy()
+            );
             total = total.plus(tally);
         }
     }
@@ -473,7 +535,10 @@ fn ccd_benchmark_has_no_false_negative() {
 #[test]
 fn rationals_round_and_report_their_error() {
     assert_eq!(rational_to_f64(3, 4), Some((0.75, 0.0)));
-    assert_eq!(rational_to_f64(-4194305, 8388608), Some((-4194305.0 / 8388608.0, 0.0)));
+    assert_eq!(
+        rational_to_f64(-4194305, 8388608),
+        Some((-4194305.0 / 8388608.0, 0.0))
+    );
     let (third, error) = rational_to_f64(1, 3).unwrap();
     assert!(error > 0.0 && (third - 1.0 / 3.0).abs() <= error);
     // 2^60 + 1 is not a double: rounded, with an error bound.
@@ -481,7 +546,10 @@ fn rationals_round_and_report_their_error() {
     assert!(e >= 1.0 && v == (1u64 << 60) as f64);
     assert_eq!(rational_to_f64(1, 0), None);
     let bad = parse_ccd_queries("1,2,3\n", Path::new("q.csv"), QueryKind::VertexFace);
-    assert_eq!(bad.unwrap_err().to_string(), "q.csv:1: 3 columns, expected 7");
+    assert_eq!(
+        bad.unwrap_err().to_string(),
+        "q.csv:1: 3 columns, expected 7"
+    );
 }
 
 /// Two balls of radius 1 whose centres are `gap + 2` apart, as one contact surface with a
@@ -490,7 +558,11 @@ fn two_balls(res: usize, gap: f64) -> (ContactSurface, Vec<Vec3>, Vec<usize>) {
     let one = ball(1.0, res).unwrap();
     let n = one.num_vertices();
     let mut x = one.positions().to_vec();
-    x.extend(one.positions().iter().map(|p| p + Vec3::new(2.0 + gap, 0.0, 0.0)));
+    x.extend(
+        one.positions()
+            .iter()
+            .map(|p| p + Vec3::new(2.0 + gap, 0.0, 0.0)),
+    );
     let surface = BoundarySurface::new(&one).unwrap();
     let mut triangles = surface.triangles().to_vec();
     triangles.extend(surface.triangles().iter().map(|t| t.map(|v| v + n)));
@@ -522,7 +594,10 @@ fn broad_phase_finds_every_close_pair() {
         }
         assert!(!expected.is_empty());
         for pair in &expected {
-            assert!(candidates.point_triangle.binary_search(pair).is_ok(), "{pair:?} missed");
+            assert!(
+                candidates.point_triangle.binary_search(pair).is_ok(),
+                "{pair:?} missed"
+            );
         }
         let edges = surface.edges();
         let mut close_edges = 0;
@@ -557,7 +632,11 @@ fn tet10_contact_surface_splits_each_face_in_four() {
     check_closed_manifold(surface.triangles()).unwrap();
     assert_eq!(surface.vertices(), faces.nodes().as_slice());
     // Closed: V - E + F = 2, and the split keeps the enclosed volume.
-    let (v, e, f) = (surface.vertices().len(), surface.edges().len(), surface.triangles().len());
+    let (v, e, f) = (
+        surface.vertices().len(),
+        surface.edges().len(),
+        surface.triangles().len(),
+    );
     assert_eq!(v + f, e + 2);
     let linear = ContactSurface::from_boundary(&BoundarySurface::new(mesh.corners()).unwrap());
     assert_eq!(linear.triangles().len(), faces.len());
@@ -575,12 +654,32 @@ fn intersection_check() {
     let (surface, x, _) = two_balls(2, -0.2);
     assert!(!intersecting_triangles(&surface, &x).is_empty());
     // Crossing, touching at a vertex, coplanar overlapping, coplanar apart.
-    let t = [Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+    let t = [
+        Vec3::zeros(),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    ];
     let tri = |a: Vec3, b: Vec3, c: Vec3| [a, b, c];
-    let crossing = tri(Vec3::new(0.2, 0.2, -1.0), Vec3::new(0.2, 0.2, 1.0), Vec3::new(2.0, 2.0, 0.0));
-    let apart = tri(Vec3::new(0.2, 0.2, 0.1), Vec3::new(1.2, 0.2, 0.1), Vec3::new(0.2, 1.2, 0.1));
-    let coplanar = tri(Vec3::new(0.2, 0.2, 0.0), Vec3::new(2.0, 0.2, 0.0), Vec3::new(0.2, 2.0, 0.0));
-    let coplanar_apart = tri(Vec3::new(2.0, 2.0, 0.0), Vec3::new(3.0, 2.0, 0.0), Vec3::new(2.0, 3.0, 0.0));
+    let crossing = tri(
+        Vec3::new(0.2, 0.2, -1.0),
+        Vec3::new(0.2, 0.2, 1.0),
+        Vec3::new(2.0, 2.0, 0.0),
+    );
+    let apart = tri(
+        Vec3::new(0.2, 0.2, 0.1),
+        Vec3::new(1.2, 0.2, 0.1),
+        Vec3::new(0.2, 1.2, 0.1),
+    );
+    let coplanar = tri(
+        Vec3::new(0.2, 0.2, 0.0),
+        Vec3::new(2.0, 0.2, 0.0),
+        Vec3::new(0.2, 2.0, 0.0),
+    );
+    let coplanar_apart = tri(
+        Vec3::new(2.0, 2.0, 0.0),
+        Vec3::new(3.0, 2.0, 0.0),
+        Vec3::new(2.0, 3.0, 0.0),
+    );
     assert!(triangles_intersect(refs(&t), refs(&crossing)));
     assert!(!triangles_intersect(refs(&t), refs(&apart)));
     assert!(triangles_intersect(refs(&t), refs(&coplanar)));
@@ -633,13 +732,25 @@ fn barrier_stiffness_bounds_start_and_growth() {
     assert!(bounds.min > 0.0 && bounds.max == 100.0 * bounds.min);
     // The balancing stiffness, clamped.
     let (ge, gb) = ([1.0, -2.0], [-1.0, 2.0]);
-    let inside = StiffnessBounds { min: 0.1, max: 10.0 };
+    let inside = StiffnessBounds {
+        min: 0.1,
+        max: 10.0,
+    };
     assert_eq!(initial_barrier_stiffness(&ge, &gb, &inside), 1.0);
     assert_eq!(initial_barrier_stiffness(&ge, &[0.0, 0.0], &inside), 0.1);
     assert_eq!(initial_barrier_stiffness(&[-5.0, 10.0], &gb, &inside), 0.1);
     // Doubling only while the smallest distance keeps shrinking below 1e-9 of the scene.
-    assert_eq!(update_barrier_stiffness(1.0, 5e-10, 4e-10, 1.0, &inside), 2.0);
-    assert_eq!(update_barrier_stiffness(1.0, 5e-10, 6e-10, 1.0, &inside), 1.0);
+    assert_eq!(
+        update_barrier_stiffness(1.0, 5e-10, 4e-10, 1.0, &inside),
+        2.0
+    );
+    assert_eq!(
+        update_barrier_stiffness(1.0, 5e-10, 6e-10, 1.0, &inside),
+        1.0
+    );
     assert_eq!(update_barrier_stiffness(1.0, 5e-9, 4e-9, 1.0, &inside), 1.0);
-    assert_eq!(update_barrier_stiffness(8.0, 5e-10, 4e-10, 1.0, &inside), 10.0);
+    assert_eq!(
+        update_barrier_stiffness(8.0, 5e-10, 4e-10, 1.0, &inside),
+        10.0
+    );
 }

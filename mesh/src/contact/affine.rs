@@ -53,7 +53,10 @@ impl<const N: usize, const K: usize> AffineResidual<N, K> {
                 let (a, b, c) = (e[0].norm_squared(), e[0].dot(&e[1]), e[1].norm_squared());
                 // a c - b^2, without its cancellation.
                 let det = e[0].cross(&e[1]).norm_squared();
-                let l = [(c * rhs[0] - b * rhs[1]) / det, (a * rhs[1] - b * rhs[0]) / det];
+                let l = [
+                    (c * rhs[0] - b * rhs[1]) / det,
+                    (a * rhs[1] - b * rhs[0]) / det,
+                ];
                 std::array::from_fn(|k| l[k])
             }
         };
@@ -81,7 +84,9 @@ impl<const N: usize, const K: usize> AffineResidual<N, K> {
         let mut gradient = SVector::<f64, D>::zeros();
         let mut hessian = SMatrix::<f64, D, D>::zeros();
         for i in 0..N {
-            gradient.fixed_rows_mut::<3>(3 * i).copy_from(&(r * (2.0 * w[i])));
+            gradient
+                .fixed_rows_mut::<3>(3 * i)
+                .copy_from(&(r * (2.0 * w[i])));
             for j in 0..N {
                 for a in 0..3 {
                     hessian[(3 * i + a, 3 * j + a)] = 2.0 * w[i] * w[j];

@@ -27,7 +27,8 @@ pub(crate) fn overlapping_pairs(a: &[Aabb], b: Option<&[Aabb]>) -> Vec<[usize; 2
     if !(size.is_finite() && size > 0.0) {
         size = 1.0;
     }
-    let cell_of = |p: &crate::Vec3| -> Cell { std::array::from_fn(|k| (p[k] / size).floor() as i64) };
+    let cell_of =
+        |p: &crate::Vec3| -> Cell { std::array::from_fn(|k| (p[k] / size).floor() as i64) };
     // (cell, which set, index)
     let mut entries: Vec<(Cell, bool, usize)> = Vec::with_capacity(8 * count);
     let mut enter = |boxes: &[Aabb], set: bool| {

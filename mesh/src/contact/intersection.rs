@@ -43,7 +43,10 @@ fn coplanar_segment_meets_triangle(p: &Vec3, q: &Vec3, t: [&Vec3; 3]) -> bool {
         let s = [orient2d(a, b, r), orient2d(b, c, r), orient2d(c, a, r)];
         s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0)
     };
-    inside(p2) || [(a, b), (b, c), (c, a)].iter().any(|&(u, v)| segments_meet(p2, q2, u, v))
+    inside(p2)
+        || [(a, b), (b, c), (c, a)]
+            .iter()
+            .any(|&(u, v)| segments_meet(p2, q2, u, v))
 }
 
 /// Whether the closed segment `pq` meets the closed triangle `t`.

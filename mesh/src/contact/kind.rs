@@ -31,7 +31,10 @@ macro_rules! with_residual {
         };
         match $kind {
             DistanceKind::PointPoint(i, j) => {
-                let $r = AffineResidual::<4, 0> { w0: pair(i, j), dw: [] };
+                let $r = AffineResidual::<4, 0> {
+                    w0: pair(i, j),
+                    dw: [],
+                };
                 $body
             }
             DistanceKind::PointEdge(p, a, b) => {
@@ -80,5 +83,4 @@ impl DistanceKind {
     pub fn weights(self, x: &[Vec3; 4]) -> [f64; 4] {
         with_residual!(self, |r| r.weights(x))
     }
-
 }

@@ -37,9 +37,8 @@ pub use mollifier::{
     edge_edge_mollifier_threshold,
 };
 pub use point_edge::{
-    point_edge_distance_kind, point_edge_squared_distance,
-    point_edge_squared_distance_derivatives, point_point_squared_distance,
-    point_point_squared_distance_derivatives,
+    point_edge_distance_kind, point_edge_squared_distance, point_edge_squared_distance_derivatives,
+    point_point_squared_distance, point_point_squared_distance_derivatives,
 };
 pub use point_triangle::{
     point_triangle_distance_kind, point_triangle_squared_distance,

@@ -29,7 +29,9 @@ pub fn edge_edge_cross_squared_derivatives(x: &[Vec3; 4]) -> Derivatives<12> {
     let mut hessian = SMatrix::<f64, 12, 12>::zeros();
     for i in 0..4 {
         let d = if i < 2 { du } else { dv };
-        gradient.fixed_rows_mut::<3>(3 * i).copy_from(&(d * sign[i]));
+        gradient
+            .fixed_rows_mut::<3>(3 * i)
+            .copy_from(&(d * sign[i]));
         for j in 0..4 {
             let block = match (i < 2, j < 2) {
                 (true, true) => duu,
@@ -53,7 +55,11 @@ pub fn edge_edge_cross_squared_derivatives(x: &[Vec3; 4]) -> Derivatives<12> {
 fn mollifier_of_cross(c: f64, eps_x: f64) -> (f64, f64, f64) {
     if c < eps_x {
         let s = c / eps_x;
-        ((2.0 - s) * s, (2.0 - 2.0 * s) / eps_x, -2.0 / (eps_x * eps_x))
+        (
+            (2.0 - s) * s,
+            (2.0 - 2.0 * s) / eps_x,
+            -2.0 / (eps_x * eps_x),
+        )
     } else {
         (1.0, 0.0, 0.0)
     }

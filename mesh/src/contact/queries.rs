@@ -143,7 +143,10 @@ pub fn parse_ccd_queries(
     rows.chunks(8)
         .map(|q| {
             if q.iter().any(|r| r.2 != q[0].2) {
-                return Err(parse_error(q[0].0, "ground truth differs within a query".into()));
+                return Err(parse_error(
+                    q[0].0,
+                    "ground truth differs within a query".into(),
+                ));
             }
             Ok(CcdQuery {
                 kind,

@@ -3,8 +3,8 @@
 //! 3-node triangles, whose vertices are all nodes (corners and mid-edge nodes), so contact
 //! acts on every surface node.
 
-use crate::{BoundarySurface, ElementSurface};
 use crate::element::TriElement;
+use crate::{BoundarySurface, ElementSurface};
 
 /// Triangles, edges and vertices on which contact acts; every index is a node of the mesh
 /// (an index into the position vector the queries take).
