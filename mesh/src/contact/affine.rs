@@ -61,9 +61,9 @@ impl<const N: usize, const K: usize> AffineResidual<N, K> {
             }
         };
         let mut w = self.w0;
-        for k in 0..K {
-            for i in 0..N {
-                w[i] += lambda[k] * self.dw[k][i];
+        for (l, dw) in lambda.iter().zip(&self.dw) {
+            for (wi, dwi) in w.iter_mut().zip(dw) {
+                *wi += l * dwi;
             }
         }
         w
@@ -106,8 +106,8 @@ impl<const N: usize, const K: usize> AffineResidual<N, K> {
             // B = phi_xl, D x K.
             let mut mixed = [SVector::<f64, D>::zeros(); 2];
             for (k, column) in mixed.iter_mut().enumerate().take(K) {
-                for i in 0..N {
-                    let block = r * (2.0 * self.dw[k][i]) + e[k] * (2.0 * w[i]);
+                for (i, wi) in w.iter().enumerate() {
+                    let block = r * (2.0 * self.dw[k][i]) + e[k] * (2.0 * wi);
                     column.fixed_rows_mut::<3>(3 * i).copy_from(&block);
                 }
             }

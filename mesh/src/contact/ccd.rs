@@ -53,7 +53,7 @@ impl Default for CcdSettings {
         CcdSettings {
             min_separation: 0.0,
             tolerance: 1e-6,
-            max_iterations: 1_000_000,
+            max_iterations: 100_000,
         }
     }
 }
