@@ -184,9 +184,25 @@ fn file_counts(path: &Path) -> Option<(f64, f64)> {
     }
 }
 
+/// The longest line the Gmsh header scan reads (a node line is under 100 bytes): a longer
+/// one ends the scan, so a file without newlines is never read into memory whole.
+const MAX_SCANNED_LINE: u64 = 1 << 16;
+
+/// The lines of `reader` while each is at most [`MAX_SCANNED_LINE`] bytes long.
+fn bounded_lines(mut reader: impl BufRead) -> impl Iterator<Item = Vec<u8>> {
+    std::iter::from_fn(move || {
+        let mut line = Vec::new();
+        let read = (&mut reader)
+            .take(MAX_SCANNED_LINE + 1)
+            .read_until(b'\n', &mut line)
+            .ok()?;
+        (read > 0 && read as u64 <= MAX_SCANNED_LINE).then_some(line)
+    })
+}
+
 /// The counts after `$Nodes` and `$Elements` (format 2: the only number; 4.1: the second).
 fn gmsh_counts(reader: impl BufRead) -> Option<(f64, f64)> {
-    let mut lines = reader.split(b'\n').map_while(Result::ok);
+    let mut lines = bounded_lines(reader);
     let mut counts = [None, None];
     while let Some(line) = lines.next() {
         let slot = match line.trim_ascii() {
@@ -352,6 +368,16 @@ fn size(bytes: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_gmsh_scan_stops_at_an_overlong_line() {
+        let header = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n12\n";
+        let elements = "$EndNodes\n$Elements\n34\n";
+        let counts = |text: String| gmsh_counts(std::io::Cursor::new(text.into_bytes()));
+        assert_eq!(counts(format!("{header}{elements}")), Some((12.0, 34.0)));
+        let long = "1".repeat(MAX_SCANNED_LINE as usize + 1);
+        assert_eq!(counts(format!("{header}{long}\n{elements}")), None);
+    }
+
     use super::*;
 
     fn scene(sets: &[&str]) -> Scene {
