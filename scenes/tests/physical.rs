@@ -89,6 +89,14 @@ fn physical_groups_clamp_and_pressurize_like_geometric_selections() {
     let (b, _) = run_scene(&geometric, &RunOptions::default()).unwrap();
     assert!(a.converged && b.converged, "{:?} {:?}", a.error, b.error);
     assert_eq!(a.steps, 2);
+    // A 10-node file run on its corners says so (before: not a word).
+    assert!(
+        a.warnings
+            .iter()
+            .any(|w| w.contains("holds 10-node tets") && w.contains("corners only")),
+        "{:?}",
+        a.warnings
+    );
     let (va, vb) = (a.probes["volume_change"], b.probes["volume_change"]);
     eprintln!("physical-tube: volume change {va:e} (geometric selections: {vb:e})");
     assert!(va.abs() < 1e-2, "nearly incompressible: {va}");
@@ -109,6 +117,10 @@ fn physical_selections_on_quadratic_tets() {
     let mut scene = write_scene(&dir, "tet10.toml", &file_mesh(), &selections).unwrap();
     scene.element = isochor_scenes::format::ElementName(isochor_mesh::element::TetElement::Tet10);
     let resolved = mesh_with_groups(scene.mesh.as_ref().unwrap(), scene.element(), true).unwrap();
+    assert!(
+        resolved.notices.is_empty(),
+        "every node used: nothing to say"
+    );
     let s = Selections::new(&resolved, &scene.selections).unwrap();
     let mesh = &resolved.mesh;
     let x = mesh.nodes();

@@ -111,9 +111,11 @@ pub fn build_bodies(
     let sources: Vec<String> = meshes.iter().map(|m| m.source.clone()).collect();
     let mut groups = Vec::new();
     let mut element_meshes = Vec::new();
+    let mut notices = Vec::new();
     for m in meshes {
         groups.push(m.groups);
         element_meshes.push(m.mesh);
+        notices.extend(m.notices);
     }
     let (mesh, parts) = ElementMesh::disjoint_union(element_meshes)?;
     let bodies = SceneBodies {
@@ -127,6 +129,7 @@ pub fn build_bodies(
             groups: joined_groups(&groups, &bodies.parts),
             mesh,
             source: format!("the bodies' meshes ({})", sources.join("; ")),
+            notices,
         },
         bodies,
     ))

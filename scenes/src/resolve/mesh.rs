@@ -16,6 +16,9 @@ pub struct SceneMesh {
     pub groups: Option<PhysicalGroups>,
     /// What the mesh is, for errors about groups.
     pub source: String,
+    /// What a user should know about how the mesh was taken (printed with the run's
+    /// warnings), e.g. a 10-node file run on its corners.
+    pub notices: Vec<String>,
 }
 
 /// Generates or reads the mesh, with elements of `element`: a linear mesh (generated or read)
@@ -55,6 +58,7 @@ pub fn mesh_with_groups(
         },
         groups,
         source: source.to_string(),
+        notices: Vec::new(),
     })
 }
 
@@ -62,6 +66,13 @@ pub fn mesh_with_groups(
 /// 4-node one given mid-edge nodes for `tet10`), with its groups when `file_groups`.
 fn file_mesh(path: &Path, element: TetElement, file_groups: bool) -> Result<SceneMesh, SceneError> {
     let read = read_mesh_file(path)?;
+    let mut notices = Vec::new();
+    if (element, read.kind()) == (TetElement::Tet4, TetElement::Tet10) {
+        notices.push(format!(
+            "the mesh file {} holds 10-node tets; element = \"tet4\" runs on their corners only (element = \"tet10\" uses every node)",
+            path.display()
+        ));
+    }
     let mesh = match (element, read.kind()) {
         (TetElement::Tet4, TetElement::Tet10) => ElementMesh::linear(read.into_corners()),
         (TetElement::Tet10, TetElement::Tet4) => ElementMesh::quadratic(read.into_corners()),
@@ -75,6 +86,7 @@ fn file_mesh(path: &Path, element: TetElement, file_groups: bool) -> Result<Scen
             None
         },
         source: format!("the mesh file {}", path.display()),
+        notices,
     })
 }
 

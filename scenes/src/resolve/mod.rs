@@ -45,6 +45,8 @@ pub struct ResolvedScene {
     pub bodies: SceneBodies,
     /// Barrier contact between surfaces, if the scene has `[contact]`.
     pub surface_contact: Option<SurfaceContactSpec>,
+    /// What a user should know about how the meshes were taken (the run's warnings).
+    pub notices: Vec<String>,
 }
 
 /// Resolves a scene: checks that its estimated memory fits ([`limits`]), builds every body's
@@ -102,6 +104,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         .zip(&bodies.parts)
         .collect();
     validate::problem(scene, &problem, &named, settings.contact_tolerance)?;
+    let notices = mesh.notices;
     Ok(ResolvedScene {
         problem,
         stepping,
@@ -110,5 +113,6 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         zones,
         bodies,
         surface_contact,
+        notices,
     })
 }

@@ -523,6 +523,7 @@ mod tests {
             mesh,
             groups: None,
             source: "a generated mesh".into(),
+            notices: Vec::new(),
         }
     }
 

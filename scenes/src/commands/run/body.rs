@@ -13,6 +13,8 @@ pub(super) struct Body {
     pub zones: Option<Zones>,
     /// Volumetric stiffness of the mixed methods (`None` if it does not apply).
     pub kappa: Option<f64>,
+    /// What the user should know about how the meshes were taken (the run's warnings).
+    pub notices: Vec<String>,
 }
 
 /// One state as the probes read it.
@@ -32,6 +34,7 @@ impl Body {
             selections,
             zones,
             kappa: problem.material.mixed_kappa().ok(),
+            notices: Vec::new(),
         }
     }
 

@@ -30,8 +30,10 @@ pub(super) fn execute(
         zones,
         bodies,
         surface_contact,
+        notices,
     } = resolve::build(scene)?;
-    let body = Body::new(&problem, selections, zones);
+    let mut body = Body::new(&problem, selections, zones);
+    body.notices = notices;
     check_probes_at_rest(scene, &body)?;
     let zone_ids = match &problem.zones {
         Some(z) => Some(z.tet_zone_ids(body.mesh.num_elements())?),

@@ -191,7 +191,7 @@ impl Run<'_> {
             error: ending.error.clone(),
             failed_step: ending.failed_step,
             overrides: options.overrides.clone(),
-            warnings: warnings(scene, &history),
+            warnings: warnings(scene, &history, &body.notices),
             history,
             failed,
             dynamic: scene.is_dynamic(),
@@ -199,10 +199,11 @@ impl Run<'_> {
     }
 }
 
-/// The scene's warnings ([`validate::warnings`]) and one per obstacle that exerted no force
-/// in any accepted step.
-fn warnings(scene: &Scene, history: &[StepRecord]) -> Vec<String> {
-    let mut warnings = validate::warnings(scene);
+/// The notices of how the meshes were taken, the scene's warnings ([`validate::warnings`])
+/// and one per obstacle that exerted no force in any accepted step.
+fn warnings(scene: &Scene, history: &[StepRecord], notices: &[String]) -> Vec<String> {
+    let mut warnings = notices.to_vec();
+    warnings.extend(validate::warnings(scene));
     for i in 0..scene.obstacles.len() {
         let touched = history.iter().any(|s| {
             s.contact
