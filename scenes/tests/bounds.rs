@@ -4,15 +4,9 @@
 //! clearly. Each is refused with exit status 1 and a message naming the key or file, without
 //! a panic and (where it could) without allocating first.
 
+use crate::common::{isochor, scratch, stderr};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn isochor(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isochor"))
-        .args(args)
-        .output()
-        .expect("the isochor binary runs")
-}
 
 /// Runs the binary in 64 MiB of address space (itself included): a refusal that allocated
 /// the mesh, or a vector of steps, first would abort instead.
@@ -24,18 +18,6 @@ fn isochor_in_64_mib(args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("sh runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-bounds-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// Asserts a clean refusal (status 1, no panic, nothing on stdout) whose message holds every
@@ -97,7 +79,7 @@ fn sizes_beyond_the_machine_are_refused_before_allocating() {
 
 #[test]
 fn a_mesh_file_is_sized_by_its_header() {
-    let dir = scratch("header");
+    let dir = scratch("bounds-header");
     let mesh = dir.join("huge.msh");
     std::fs::write(
         &mesh,
@@ -126,7 +108,7 @@ fn non_finite_numbers_are_refused_naming_the_key() {
         let o = isochor(&["run", "cantilever", "--set", set]);
         refused(&o, &[&format!("key '{key}'"), what]);
     }
-    let dir = scratch("nan");
+    let dir = scratch("bounds-nan");
     let scene = dir.join("nan.toml");
     let text = isochor(&["show", "resting-block"]).stdout;
     let text = String::from_utf8(text).unwrap()
@@ -166,7 +148,7 @@ fn alternative_and_repeated_keys_conflict() {
     // In a scene file, too.
     let o = isochor(&["show", "cantilever", "--set", "material.mu=1e4"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let dir = scratch("both");
+    let dir = scratch("bounds-both");
     let scene = dir.join("both.toml");
     let text = String::from_utf8(isochor(&["show", "cantilever"]).stdout).unwrap();
     std::fs::write(&scene, text.replace("young = ", "mu = 1e4\nyoung = ")).unwrap();
@@ -211,7 +193,7 @@ gravity = [0.0, 0.0, -9.8]
 
 #[test]
 fn a_quasi_static_body_must_be_held() {
-    let dir = scratch("supports");
+    let dir = scratch("bounds-supports");
     let quasi = "mode = \"quasi-static\"\nsteps = 1";
     for (dirichlet, free) in [
         ("", "6 of its 6"),
@@ -252,7 +234,7 @@ fn an_obstacle_inside_the_body_at_the_start_is_refused() {
         &["key 'obstacles[0]'", "half-space", "nodes lie inside it"],
     );
     // A sphere wholly inside the cantilever, which the boundary vertices would never meet.
-    let dir = scratch("obstacle");
+    let dir = scratch("bounds-obstacle");
     let scene = dir.join("inside.toml");
     let text = String::from_utf8(isochor(&["show", "cantilever"]).stdout).unwrap();
     let text = text
@@ -287,7 +269,7 @@ fn the_builtin_scenes_with_obstacles_start_clear_of_them() {
 
 #[test]
 fn a_killed_runs_temporary_folder_is_removed_by_the_next_run() {
-    let dir = scratch("stale");
+    let dir = scratch("bounds-stale");
     let out = dir.join("out");
     let temp = dir.join(".out.tmp");
     let mut child = Command::new(env!("CARGO_BIN_EXE_isochor"))
@@ -321,7 +303,7 @@ fn a_killed_runs_temporary_folder_is_removed_by_the_next_run() {
 
 #[test]
 fn paths_that_do_not_exist_or_are_folders_say_so() {
-    let dir = scratch("paths");
+    let dir = scratch("bounds-paths");
     let missing = dir.join("no-such.toml");
     let o = isochor(&["run", missing.to_str().unwrap()]);
     let err = refused(&o, &["no-such.toml", "no such scene file"]);
@@ -348,7 +330,7 @@ fn paths_that_do_not_exist_or_are_folders_say_so() {
 
 #[test]
 fn long_tokens_and_binary_bytes_are_not_echoed_raw() {
-    let dir = scratch("tokens");
+    let dir = scratch("bounds-tokens");
     let long = "x".repeat(300);
     let o = isochor(&["run", &long]);
     let err = refused(&o, &["... (300 characters)"]);
@@ -389,7 +371,7 @@ fn long_tokens_and_binary_bytes_are_not_echoed_raw() {
 
 #[test]
 fn mesh_errors_name_the_files_own_tags() {
-    let dir = scratch("tags");
+    let dir = scratch("bounds-tags");
     let mesh = dir.join("flat.msh");
     // Runs the cantilever on a Gmsh 2.2 file of nodes 10, 20, 30, 40 and element 42.
     let run_on = |nodes: &str, element: &str| {
@@ -438,7 +420,7 @@ fn keys_nested_beyond_any_scene_key_are_refused() {
     let deep = vec!["a"; 30_000].join(".");
     let o = isochor(&["run", "two-tets", "--set", &format!("{deep}=1")]);
     refused(&o, &["--set a.a.a", "30000 dotted segments", "at most 32"]);
-    let dir = scratch("deep-variant");
+    let dir = scratch("bounds-deep-variant");
     let shown = isochor(&["show", "two-tets"]);
     let scene = format!(
         "{}\n[variants.deep]\n\"{deep}\" = 1\n",
@@ -457,7 +439,7 @@ fn keys_nested_beyond_any_scene_key_are_refused() {
 #[cfg(unix)]
 #[test]
 fn devices_and_fifos_are_refused_before_reading() {
-    let dir = scratch("devices");
+    let dir = scratch("bounds-devices");
     let zero = dir.join("zero.msh");
     std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
     let o = isochor_in_64_mib(&[
@@ -512,7 +494,7 @@ fn load_curves_with_too_many_corners_are_refused() {
         &format!("[[dirichlet]]\ncurve = [{}]\n", points.join(", ")),
         1,
     );
-    let dir = scratch("corners");
+    let dir = scratch("bounds-corners");
     let path = dir.join("corners.toml");
     std::fs::write(&path, scene).unwrap();
     let o = isochor(&["run", path.to_str().unwrap()]);
@@ -583,7 +565,7 @@ fn questionable_runs_warn_on_stderr_and_in_the_summary() {
         "{summary}"
     );
     assert!(stderr(&o).contains(warning), "{}", stderr(&o));
-    let dir = scratch("far-obstacle");
+    let dir = scratch("bounds-far-obstacle");
     let shown = isochor(&["show", "two-tets"]);
     let scene = format!(
         "{}\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -10.0]\n",
@@ -607,7 +589,7 @@ fn questionable_runs_warn_on_stderr_and_in_the_summary() {
 /// no index.
 #[test]
 fn obstacle_errors_name_the_obstacle() {
-    let dir = scratch("obstacle-index");
+    let dir = scratch("bounds-obstacle-index");
     let shown = isochor(&["show", "two-tets"]);
     let scene = format!(
         "{}\n[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -10.0]\n\n\

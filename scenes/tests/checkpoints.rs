@@ -3,28 +3,10 @@
 //! (to a wrong result, or a "converged" run at part of the load), panicked (`every = 0`) or
 //! failed inside the solver, and a frame `../../x.vtu` reached the committed `frame.pvd`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use crate::common::{isochor, scratch, stderr};
+use std::path::Path;
+use std::process::Output;
 use toml::{Table, Value};
-
-fn isochor(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isochor"))
-        .args(args)
-        .output()
-        .expect("the isochor binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("isochor-checkpoints-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// The checkpoint of a finished 4-step run, cut back to an interrupted run after 2 steps.
 fn interrupted_checkpoint(dir: &Path) -> Table {
@@ -76,7 +58,7 @@ fn set(c: &mut Table, path: &[&str], value: Value) {
 
 #[test]
 fn corrupted_checkpoints_are_refused_naming_the_field() {
-    let dir = scratch("fields");
+    let dir = scratch("checkpoints-fields");
     let base = interrupted_checkpoint(&dir);
     let o = resume_with(&dir, "baseline", &base);
     assert!(

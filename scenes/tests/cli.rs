@@ -1,31 +1,9 @@
 //! The `isochor` binary end to end: the command-line contract of docs/contracts.md.
 
+use crate::common::{isochor, scratch, stderr, stdout};
 use isochor_mesh::io::read_vtu_file;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn isochor(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isochor"))
-        .args(args)
-        .output()
-        .expect("the isochor binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn assert_failed_cleanly(o: &Output, out: &Path, needles: &[&str]) {
     assert_eq!(o.status.code(), Some(1), "stderr: {}", stderr(o));
@@ -69,7 +47,7 @@ fn list_prints_every_builtin_scene_one_per_line() {
 
 #[test]
 fn a_bad_key_is_named_with_the_valid_ones_and_writes_nothing() {
-    let dir = scratch("bad-key");
+    let dir = scratch("cli-bad-key");
     let out = dir.join("out");
     let o = isochor(&[
         "run",
@@ -96,7 +74,7 @@ fn a_bad_key_is_named_with_the_valid_ones_and_writes_nothing() {
 
 #[test]
 fn a_bad_value_is_named_and_writes_nothing() {
-    let dir = scratch("bad-value");
+    let dir = scratch("cli-bad-value");
     let out = dir.join("out");
     let o = isochor(&[
         "run",
@@ -146,7 +124,7 @@ fn a_bad_value_is_named_and_writes_nothing() {
 
 #[test]
 fn a_missing_file_is_named_and_writes_nothing() {
-    let dir = scratch("missing");
+    let dir = scratch("cli-missing");
     let out = dir.join("out");
     let scene = dir.join("no-such-scene.toml");
     let o = isochor(&[
@@ -180,7 +158,7 @@ fn a_missing_file_is_named_and_writes_nothing() {
 
 #[test]
 fn a_copied_scene_file_with_a_typo_is_rejected() {
-    let dir = scratch("typo");
+    let dir = scratch("cli-typo");
     let out = dir.join("out");
     let shown = isochor(&["show", "cantilever"]);
     assert!(shown.status.success());
@@ -216,7 +194,7 @@ const CONTRACT_KEYS: [&str; 13] = [
 
 #[test]
 fn run_json_is_one_object_with_every_contract_key_and_out_writes_everything() {
-    let dir = scratch("json");
+    let dir = scratch("cli-json");
     let out = dir.join("out");
     let o = isochor(&[
         "run",
@@ -278,7 +256,7 @@ fn run_json_is_one_object_with_every_contract_key_and_out_writes_everything() {
 /// in ASCII, and both formats hold the same data.
 #[test]
 fn vtu_encoding_chooses_ascii_or_binary_frames_with_the_same_data() {
-    let dir = scratch("encoding");
+    let dir = scratch("cli-encoding");
     let frame = |name: &str, set: Option<&str>| {
         let out = dir.join(name);
         let mut args = vec!["run", "cantilever", "--set", "res=1", "--set", "steps=1"];
@@ -310,7 +288,7 @@ fn vtu_encoding_chooses_ascii_or_binary_frames_with_the_same_data() {
 
 #[test]
 fn compare_prints_a_table_and_writes_csv_and_markdown() {
-    let dir = scratch("compare");
+    let dir = scratch("cli-compare");
     let out = dir.join("out");
     let o = isochor(&[
         "compare",
@@ -344,7 +322,7 @@ fn compare_prints_a_table_and_writes_csv_and_markdown() {
 /// logs the failed step's iterations last in `iterations.csv` (with the stiffness shift).
 #[test]
 fn a_failed_run_logs_the_failed_step() {
-    let dir = scratch("failed");
+    let dir = scratch("cli-failed");
     let out = dir.join("out");
     let o = isochor(&[
         "run",
@@ -388,7 +366,7 @@ fn a_failed_run_logs_the_failed_step() {
 /// bit (the final states of the two checkpoints are equal), and refuses to resume it twice.
 #[test]
 fn a_killed_run_resumes_to_the_uninterrupted_result() {
-    let dir = scratch("resume");
+    let dir = scratch("cli-resume");
     let run_args = |out: &Path| -> Vec<String> {
         [
             "run",
@@ -471,7 +449,7 @@ fn a_killed_run_resumes_to_the_uninterrupted_result() {
 #[test]
 fn frames_carry_von_mises_stress_and_velocity() {
     use isochor_mesh::io::{read_vtu_file, FieldValues};
-    let dir = scratch("fields");
+    let dir = scratch("cli-fields");
     let out = dir.join("out");
     let o = isochor(&[
         "run",
@@ -526,7 +504,7 @@ fn penalties_writes_the_csv_and_png_of_fig_3() {
     use isochor_energies::{
         LogPenalty, QuadraticPenalty, SheenPenalty, Snh2Penalty, StvkPenalty, VolumetricPenalty,
     };
-    let dir = scratch("penalties");
+    let dir = scratch("cli-penalties");
     let out = dir.join("fig3");
     let o = isochor(&["penalties", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "stderr: {}", stderr(&o));

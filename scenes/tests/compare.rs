@@ -3,13 +3,13 @@
 //! from synthetic runs (with the built-in spine arm's `[paper]` section, Table 2 of Francu
 //! et al. 2021) and end to end on the coarsest cantilever.
 
+use crate::common::{isochor_in, scratch};
 use isochor_scenes::commands::compare::{CompareRow, Comparison};
 use isochor_scenes::format::PaperSpec;
 use isochor_scenes::format::{LengthUnit, Scene};
 use isochor_scenes::{builtin, load_scene, RunResult, SceneError};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 /// The probe of the spine arm's `[paper]` section.
 const PROBE: &str = "tip_deflection";
@@ -337,22 +337,6 @@ fn bad_paper_keys_are_named() {
     }
 }
 
-fn isochor(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isochor"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the isochor binary runs")
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-compare-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// The width and height of a PNG file.
 fn png_size(path: &Path) -> (u32, u32) {
     let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -366,7 +350,7 @@ fn png_size(path: &Path) -> (u32, u32) {
 /// `--out`, or without it into `compare-SCENE` in the working directory, and says where.
 #[test]
 fn plots_are_png_files_written_where_said() {
-    let dir = scratch("plots");
+    let dir = scratch("compare-plots");
     let args = [
         "compare",
         "cantilever",
@@ -379,7 +363,7 @@ fn plots_are_png_files_written_where_said() {
         "--sweep",
         "nu=0.49,0.4999",
     ];
-    let o = isochor(&args, &dir);
+    let o = isochor_in(&args, &dir);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
     let default = Path::new("compare-cantilever");
@@ -405,7 +389,7 @@ fn plots_are_png_files_written_where_said() {
     let out = dir.join("out");
     let mut with_out = args.to_vec();
     with_out.extend(["--out", out.to_str().unwrap()]);
-    let o = isochor(&with_out, &dir);
+    let o = isochor_in(&with_out, &dir);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -421,7 +405,7 @@ fn plots_are_png_files_written_where_said() {
 /// energy, potential energy, volume change against time); a static one does not.
 #[test]
 fn dynamic_comparisons_plot_the_energies_against_time() {
-    let dir = scratch("energy");
+    let dir = scratch("compare-energy");
     let out = dir.join("out");
     let args = [
         "compare",
@@ -435,7 +419,7 @@ fn dynamic_comparisons_plot_the_energies_against_time() {
         "--out",
         out.to_str().unwrap(),
     ];
-    let o = isochor(&args, &dir);
+    let o = isochor_in(&args, &dir);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(png_size(&out.join("compare-energy.png")), (1000, 1500));
     let statics = dir.join("statics");
@@ -449,7 +433,7 @@ fn dynamic_comparisons_plot_the_energies_against_time() {
         "--out",
         statics.to_str().unwrap(),
     ];
-    let o = isochor(&args, &dir);
+    let o = isochor_in(&args, &dir);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!statics.join("compare-energy.png").exists());
     std::fs::remove_dir_all(&dir).unwrap();

@@ -2,19 +2,12 @@
 //! rest positions and `displacement` is the field to warp them by (ParaView's Warp By
 //! Vector), or with `output.points = "deformed"` the points are the deformed positions.
 
+use crate::common::scratch;
 use isochor_mesh::io::{read_vtu_file, FieldValues};
 use isochor_mesh::Vec3;
 use isochor_scenes::resolve::build;
 use isochor_scenes::{builtin, load_scene, run_named, Override};
-use std::path::{Path, PathBuf};
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-frames-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use std::path::Path;
 
 /// The reduced stretch cube's overrides with `extra`.
 fn sets(extra: &[&str]) -> Vec<Override> {
@@ -51,7 +44,7 @@ fn frames_hold_rest_points_and_the_displacement_to_warp_by() {
         .mesh
         .nodes()
         .to_vec();
-    let dir = scratch("points");
+    let dir = scratch("frames-points");
     let (rest, u) = last_frame(&dir.join("rest"), &["vtu_encoding=binary"]);
     assert_eq!(rest, rest_nodes, "the points are the rest nodes");
     assert!(u.iter().any(|d| d.norm() > 1e-3), "the cube is stretched");

@@ -2,26 +2,9 @@
 //! by another process, a kill between the two renames of the commit (the `ISOCHOR_FAULT`
 //! hook of debug builds), and `--out` paths that cannot be written, refused before the solve.
 
-use std::path::{Path, PathBuf};
+use crate::common::{isochor, scratch, stderr};
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn isochor(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_isochor"))
-        .args(args)
-        .output()
-        .expect("the isochor binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-outputs-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn names_in(dir: &Path) -> Vec<String> {
     let mut names: Vec<_> = std::fs::read_dir(dir)
@@ -43,7 +26,7 @@ fn run_into(out: &Path, extra: &[&str]) -> Output {
 #[cfg(unix)]
 #[test]
 fn a_run_is_refused_while_another_process_holds_the_folder() {
-    let dir = scratch("lock");
+    let dir = scratch("outputs-lock");
     let out = dir.join("out");
     assert!(run_into(&out, &[]).status.success());
     let lock = std::fs::File::create(dir.join(".out.lock")).unwrap();
@@ -69,7 +52,7 @@ fn a_run_is_refused_while_another_process_holds_the_folder() {
 #[cfg(debug_assertions)]
 #[test]
 fn a_kill_between_the_renames_loses_nothing() {
-    let dir = scratch("window");
+    let dir = scratch("outputs-window");
     let out = dir.join("out");
     assert!(run_into(&out, &[]).status.success());
     let o = Command::new(env!("CARGO_BIN_EXE_isochor"))
@@ -103,7 +86,7 @@ fn unwritable_and_dangling_outputs_are_refused_before_the_run() {
     assert_eq!(o.status.code(), Some(1));
     let err = stderr(&o);
     assert!(err.contains("/proc/x") && !err.contains(".x.tmp"), "{err}");
-    let dir = scratch("dangling");
+    let dir = scratch("outputs-dangling");
     let link = dir.join("link");
     std::os::unix::fs::symlink(dir.join("gone"), &link).unwrap();
     let o = isochor(&["run", "dynamic-cube", "--out", link.to_str().unwrap()]);

@@ -3,6 +3,7 @@
 //! `inner`, `outer`, `bottom`, `top` and volume group `tube`) clamped by its `bottom` group
 //! and inflated through its `inner` group, as the same run with geometric selections.
 
+use crate::common::scratch;
 use isochor_scenes::resolve::mesh_with_groups;
 use isochor_scenes::resolve::Selections;
 use isochor_scenes::{load_scene, run_scene, RunOptions, Scene, SceneError};
@@ -10,14 +11,6 @@ use std::path::{Path, PathBuf};
 
 fn tube_mesh() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/tube-tet10-v41.msh")
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-physical-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// The tube scene with `mesh` (a TOML table body) and `selections` (TOML tables for
@@ -75,7 +68,7 @@ physical = "inner"
 
 #[test]
 fn physical_groups_clamp_and_pressurize_like_geometric_selections() {
-    let dir = scratch("run");
+    let dir = scratch("physical-run");
     let physical = write_scene(&dir, "physical.toml", &file_mesh(), PHYSICAL).unwrap();
     let geometric = write_scene(
         &dir,
@@ -109,7 +102,7 @@ fn physical_groups_clamp_and_pressurize_like_geometric_selections() {
 /// with `surface = true` selects the boundary faces of its tets.
 #[test]
 fn physical_selections_on_quadratic_tets() {
-    let dir = scratch("tet10");
+    let dir = scratch("physical-tet10");
     let selections = format!(
         "{PHYSICAL}\n[selections.skin]\nphysical = \"tube\"\nsurface = true\n\n\
          [selections.body]\nphysical = \"tube\"\n"
@@ -147,7 +140,7 @@ fn physical_selections_on_quadratic_tets() {
 
 #[test]
 fn missing_groups_and_generated_meshes_are_errors() {
-    let dir = scratch("errors");
+    let dir = scratch("physical-errors");
     let missing = PHYSICAL.replace("\"inner\"", "\"chamber\"");
     let scene = write_scene(&dir, "missing.toml", &file_mesh(), &missing).unwrap();
     let e = run_scene(&scene, &RunOptions::default())
@@ -179,7 +172,7 @@ fn missing_groups_and_generated_meshes_are_errors() {
 /// a curve group is found and refused as one. Before: both were "no physical group".
 #[test]
 fn ambiguous_and_curve_groups_say_what_they_are() {
-    let dir = scratch("ambiguous");
+    let dir = scratch("physical-ambiguous");
     let gmsh = Path::new(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/two-groups-v22.msh");
     let text = std::fs::read_to_string(gmsh)
         .unwrap()

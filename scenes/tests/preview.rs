@@ -1,22 +1,15 @@
 //! `preview.png`: a valid PNG of the deformed body that shows the cantilever's sag, and the
 //! `[output]` keys `preview`, `preview_field` and `preview_rest`.
 
+use crate::common::scratch;
 use isochor_scenes::{load_scene, run_named, Override, SceneError};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The body's area of the picture: left of the color bar, below the title.
 const AREA_RIGHT: usize = 670;
 const AREA_TOP: usize = 50;
 /// The rest outline's grey.
 const OUTLINE: [u8; 3] = [128, 128, 128];
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-preview-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn overrides(sets: &[&str]) -> Vec<Override> {
     sets.iter().map(|s| Override::parse(s).unwrap()).collect()
@@ -79,7 +72,7 @@ fn decode(path: &Path) -> Picture {
 /// of the rest outline.
 #[test]
 fn the_cantilever_preview_shows_the_sag() {
-    let dir = scratch("sag");
+    let dir = scratch("preview-sag");
     let out = dir.join("out");
     let result = run(&out, &[]);
     assert!(result.converged);
@@ -115,7 +108,7 @@ fn the_cantilever_preview_shows_the_sag() {
 /// outline grey.
 #[test]
 fn preview_field_and_rest_outline_are_chosen_by_keys() {
-    let dir = scratch("keys");
+    let dir = scratch("preview-keys");
     for field in ["von_mises", "mean_stress", "J", "displacement"] {
         let out = dir.join(field);
         run(
@@ -155,7 +148,7 @@ fn an_unknown_preview_field_is_an_error_naming_the_key_and_the_values() {
 /// `preview` follows `plots` unless given.
 #[test]
 fn preview_false_or_no_plots_writes_no_picture() {
-    let dir = scratch("off");
+    let dir = scratch("preview-off");
     for (name, sets, expected) in [
         ("off", &["preview=false"][..], false),
         ("no-plots", &["plots=false"][..], false),
@@ -174,7 +167,7 @@ fn preview_false_or_no_plots_writes_no_picture() {
 /// A run that fails still draws its last accepted state.
 #[test]
 fn a_failed_run_draws_its_last_accepted_state() {
-    let dir = scratch("failed");
+    let dir = scratch("preview-failed");
     let out = dir.join("out");
     let result = run(
         &out,

@@ -3,20 +3,13 @@
 //! 2 mm strain-limiting layer at z in [0, 0.002], volume groups `soft` and `stiff layer`,
 //! surface group `clamped` at x = 0), and `isochor check`.
 
+use crate::common::scratch;
 use isochor_scenes::commands::check::check_scene;
 use isochor_scenes::{load_scene, run_scene, RunOptions, Scene, SceneError};
 use std::path::{Path, PathBuf};
 
 fn bilayer_mesh() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../mesh/tests/data/bilayer-v41.msh")
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("isochor-regions-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// The bilayer clamped on its `clamped` group, bending under its own weight, with body
@@ -90,7 +83,7 @@ material = { young = 10e6 }"#;
 /// one given by the physical volume group, and a region of the body's material is no region.
 #[test]
 fn a_stiff_layer_sags_between_the_soft_and_the_stiff_body() {
-    let dir = scratch("order");
+    let dir = scratch("regions-order");
     let soft = sag(&bilayer(&dir, "soft.toml", SOFT, "").unwrap());
     let layered = sag(&bilayer(&dir, "layered.toml", SOFT, STIFF_LAYER).unwrap());
     let stiff = sag(&bilayer(&dir, "stiff.toml", 100.0 * SOFT, "").unwrap());
@@ -128,7 +121,7 @@ fn a_stiff_layer_sags_between_the_soft_and_the_stiff_body() {
 /// element counts Gmsh reports for the two volume groups.
 #[test]
 fn check_reports_the_region_volumes_of_the_mesh() {
-    let dir = scratch("check");
+    let dir = scratch("regions-check");
     let scene = bilayer(&dir, "layered.toml", SOFT, STIFF_LAYER).unwrap();
     let vtu = dir.join("check.vtu");
     let report = check_scene(&scene, Some(&vtu)).unwrap();
@@ -160,7 +153,7 @@ fn check_reports_the_region_volumes_of_the_mesh() {
 /// a selection that does not exist.
 #[test]
 fn bad_regions_are_named_errors() {
-    let dir = scratch("errors");
+    let dir = scratch("regions-errors");
     let error = |file: &str, regions: &str| {
         bilayer(&dir, file, SOFT, regions)
             .and_then(|s| check_scene(&s, None).map(|_| ()))
@@ -204,7 +197,7 @@ fn bad_regions_are_named_errors() {
 /// attribute that is not an integer is an error naming the line.
 #[test]
 fn tetgen_region_attributes_select_regions() {
-    let dir = scratch("tetgen");
+    let dir = scratch("regions-tetgen");
     let grid = isochor_mesh::generate::box_grid(
         isochor_mesh::Vec3::zeros(),
         isochor_mesh::Vec3::new(2.0, 1.0, 1.0),
@@ -289,7 +282,7 @@ steps = 1
 /// without naming the region).
 #[test]
 fn region_keys_that_do_nothing_are_named_errors() {
-    let dir = scratch("questionable");
+    let dir = scratch("regions-questionable");
     let error = |file: &str, material: &str| {
         bilayer(
             &dir,
