@@ -18,5 +18,6 @@ mod quadratic;
 mod reference;
 mod stepping;
 mod stresses;
+mod surface_contact_term;
 mod terms;
 mod volume;

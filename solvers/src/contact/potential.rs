@@ -151,6 +151,15 @@ impl BarrierPotential {
         }
     }
 
+    /// The four nodes of every candidate pair, in the order of [`Self::hessian_blocks`].
+    pub fn pair_nodes(
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+    ) -> Vec<[usize; 4]> {
+        pairs(surface, candidates, rest).map(|p| p.nodes).collect()
+    }
+
     /// The PSD-projected Hessian block of every candidate pair at `x`, in the candidates'
     /// order (point-triangle pairs, then edge-edge pairs): the pair's four nodes and its
     /// `12 x 12` block (zero beyond `dhat`). The nodes depend on the candidates only, so a

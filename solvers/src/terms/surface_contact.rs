@@ -222,12 +222,10 @@ impl EnergyTerm for SurfaceContact {
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        let potential = self.potential();
         let active = self.read();
-        potential
-            .hessian_blocks(&self.surface, &active.candidates, &self.rest, &self.rest)
+        BarrierPotential::pair_nodes(&self.surface, &active.candidates, &self.rest)
             .iter()
-            .flat_map(|(nodes, _)| block_pattern(nodes).collect::<Vec<_>>())
+            .flat_map(|nodes| block_pattern(nodes).collect::<Vec<_>>())
             .collect()
     }
 
@@ -240,14 +238,14 @@ impl EnergyTerm for SurfaceContact {
     ) -> Result<f64, SolverError> {
         let potential = self.potential();
         // With a Hessian, the pattern's pairs (updated at this state); else the trial's own.
-        let (candidates, own);
-        if hessian.is_some() {
-            own = self.read().candidates.clone();
-            candidates = &own;
+        let (guard, own);
+        let candidates = if hessian.is_some() {
+            guard = self.read();
+            &guard.candidates
         } else {
             own = self.candidates(x);
-            candidates = &own;
-        }
+            &own
+        };
         let energy = potential.energy(&self.surface, candidates, &self.rest, x);
         if let Some(g) = gradient {
             potential.add_gradient(&self.surface, candidates, &self.rest, x, g);
