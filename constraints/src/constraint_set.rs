@@ -67,6 +67,10 @@ pub trait ConstraintSet: Send + Sync + std::fmt::Debug {
     /// The compliance `C` (constant under Assumption 2 of Francu et al. 2021).
     fn compliance(&self) -> Compliance;
 
+    /// Whether the constraints have a meaning at inverted elements (`J <= 0`): true for
+    /// volumes (the linear measure), false for the logarithmic measure.
+    fn admits_inversion(&self) -> bool;
+
     /// Per-tet pressure for visualization, from the multipliers at positions `x` (one value
     /// per tet, tension positive). Empty when `x` or `multipliers` has the wrong length, so
     /// callers that check the length against the tet count reject it.

@@ -202,6 +202,10 @@ impl ConstraintSet for NodalConstraints {
         )
     }
 
+    fn admits_inversion(&self) -> bool {
+        self.measure() == Measure::Linear
+    }
+
     fn compliance(&self) -> Compliance {
         let scale = &self.inverse_kappa;
         match self.compliance {

@@ -116,6 +116,10 @@ impl ConstraintSet for PerElementConstraints {
             .fill_hessians(x, out, self.elements.len(), |e| e, |e, _| multipliers[e])
     }
 
+    fn admits_inversion(&self) -> bool {
+        self.measure() == Measure::Linear
+    }
+
     fn compliance(&self) -> Compliance {
         Compliance::Diagonal(
             (0..self.elements.len())

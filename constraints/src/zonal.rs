@@ -233,6 +233,10 @@ impl ConstraintSet for ZonalConstraints {
         )
     }
 
+    fn admits_inversion(&self) -> bool {
+        true
+    }
+
     fn compliance(&self) -> Compliance {
         Compliance::Diagonal(self.compliance.clone())
     }

@@ -98,7 +98,7 @@ fn a_stiff_layer_sags_between_the_soft_and_the_stiff_body() {
         &dir,
         "same.toml",
         SOFT,
-        &STIFF_LAYER.replace("young = 10e6", ""),
+        &STIFF_LAYER.replace("young = 10e6", &format!("young = {SOFT:e}")),
     )
     .unwrap());
     eprintln!(
@@ -313,6 +313,11 @@ fn region_keys_that_do_nothing_are_named_errors() {
             "{e}"
         );
     }
+    let empty = error("empty.toml", "");
+    assert!(
+        empty.contains("regions.0.material") && empty.contains("changes nothing"),
+        "{empty}"
+    );
     let skin = error("skin.toml", "young = 10e6, epidermis = true");
     assert!(
         skin.contains("regions.0.material.epidermis") && skin.contains("whole body"),

@@ -38,6 +38,13 @@ pub enum SolverError {
     /// The initial state has inverted or degenerate elements where the energy is undefined.
     #[error("the initial state is outside the domain of the energy: {0}")]
     InvalidInitialState(String),
+    /// A step converged to a state with inverted elements where the energy has no meaning:
+    /// the attempt fails, as a negative Jacobian does in FEBio, and the increment is cut.
+    #[error("the step converged to a state with {inverted} inverted elements (J <= 0 at a corner or quadrature point), where the energy is undefined; use smaller increments or an invertible energy (the zonal method, or the stable-neo-hookean model)")]
+    InvertedState {
+        /// Elements with `J <= 0` at a corner or quadrature point.
+        inverted: usize,
+    },
     /// A nonlinear iteration ran out of iterations before the tolerances were met.
     #[error("{solver} did not converge in {iterations} iterations (force residual {force_residual:e}, constraint residual {constraint_residual:e})")]
     NotConverged {

@@ -6,6 +6,7 @@ mod common;
 mod contact;
 mod equivalences;
 mod examples;
+mod inversion;
 mod iterative;
 mod linear;
 mod matrices;

@@ -183,6 +183,15 @@ fn material_and_regions(scene: &Scene) -> Result<(), Fault> {
     }
     for (i, r) in scene.regions.iter().enumerate() {
         selection_defined(scene, format!("regions.{i}.selection"), &r.selection)?;
+        if r.material.is_empty() {
+            return Err(fault(
+                format!("regions.{i}.material"),
+                format!(
+                    "region '{}' changes nothing: give the keys of [material] that differ in it",
+                    r.name
+                ),
+            ));
+        }
     }
     Ok(())
 }

@@ -243,6 +243,17 @@ impl<'m> System<'m> {
             })
     }
 
+    /// Whether every term and constraint has a meaning at inverted elements, so that a state
+    /// with some may be accepted ([`EnergyTerm::admits_inversion`]).
+    pub fn admits_inversion(&self) -> bool {
+        self.terms().all(|t| t.admits_inversion())
+            && self
+                .model
+                .constraints
+                .as_ref()
+                .is_none_or(|c| c.admits_inversion())
+    }
+
     /// Assembly time since the last call.
     pub fn take_assembly_time(&mut self) -> Duration {
         std::mem::take(&mut self.assembly_time)

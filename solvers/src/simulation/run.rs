@@ -185,6 +185,8 @@ struct Run<'s> {
     system: System<'s>,
     solver: Solver,
     plan: RunPlan,
+    /// Whether a state with inverted elements may be accepted ([`System::admits_inversion`]).
+    admits_inversion: bool,
 }
 
 impl<'s> Run<'s> {
@@ -201,6 +203,7 @@ impl<'s> Run<'s> {
             }
         };
         Ok(Run {
+            admits_inversion: system.admits_inversion(),
             system,
             solver,
             plan,
@@ -233,7 +236,9 @@ impl<'s> Run<'s> {
             increment: attempt.increment,
             ..StepReport::default()
         };
-        let result = self.solve(&mut x, &mut p, &target, &mut report);
+        let result = self
+            .solve(&mut x, &mut p, &target, &mut report)
+            .and_then(|()| self.check_domain(&x));
         if let Some(contact) = &self.system.model.contact {
             report.contact = contact.summary(&x);
         }
@@ -245,6 +250,22 @@ impl<'s> Run<'s> {
             }
         }
         (x, p, report, result)
+    }
+
+    /// A converged state with inverted elements (`J <= 0` at a corner or at a point of any
+    /// quadrature rule, [`ElementMesh::count_inverted`]) is a failed attempt unless every
+    /// term and constraint admits inversion: the line search keeps the energy's own
+    /// quadrature points in its domain, but a 10-node element may still fold at a corner.
+    ///
+    /// [`ElementMesh::count_inverted`]: isochor_mesh::ElementMesh::count_inverted
+    fn check_domain(&self, x: &[Vec3]) -> Result<(), SolverError> {
+        if self.admits_inversion {
+            return Ok(());
+        }
+        match self.system.model.mesh.count_inverted(x) {
+            0 => Ok(()),
+            inverted => Err(SolverError::InvertedState { inverted }),
+        }
     }
 
     /// The method's own solve of one step, inside the contact's projected multiplier

@@ -181,4 +181,8 @@ impl EnergyTerm for AugmentedConstraints {
         let mut phi = vec![0.0; self.stiffness.len()];
         self.constraints.values(x, &mut phi).is_ok()
     }
+
+    fn admits_inversion(&self) -> bool {
+        self.constraints.admits_inversion()
+    }
 }

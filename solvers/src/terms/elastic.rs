@@ -214,6 +214,12 @@ impl EnergyTerm for Elastic {
         })
     }
 
+    fn admits_inversion(&self) -> bool {
+        self.materials
+            .iter()
+            .all(|m| m.is_defined_at(0.0) && m.is_defined_at(-1.0))
+    }
+
     fn rounding_scale(&self) -> f64 {
         self.rounding_scale
     }

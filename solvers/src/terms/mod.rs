@@ -53,6 +53,13 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
         true
     }
 
+    /// Whether the term's energy has a meaning at inverted elements (`J <= 0` somewhere), so
+    /// that a state with such elements may be accepted (invertible energies such as Stable
+    /// neo-Hookean); false for energies undefined there (`log J`, `J^-2/3`).
+    fn admits_inversion(&self) -> bool {
+        true
+    }
+
     /// Whether the term is an external load (its energy is reported as external work).
     fn is_external(&self) -> bool {
         false

@@ -199,11 +199,21 @@ impl Run<'_> {
     }
 }
 
-/// The notices of how the meshes were taken, the scene's warnings ([`validate::warnings`])
-/// and one per obstacle that exerted no force in any accepted step.
+/// The notices of how the meshes were taken, the scene's warnings ([`validate::warnings`]),
+/// one for accepted states with inverted elements (an invertible energy's; any other fails
+/// the step) and one per obstacle that exerted no force in any accepted step.
 fn warnings(scene: &Scene, history: &[StepRecord], notices: &[String]) -> Vec<String> {
     let mut warnings = notices.to_vec();
     warnings.extend(validate::warnings(scene));
+    let inverted = history.iter().filter(|s| s.inverted_tets > 0);
+    if let Some(worst) = inverted.clone().max_by_key(|s| s.inverted_tets) {
+        warnings.push(format!(
+            "{} accepted steps have inverted elements (at most {}, at step {}): the energy is invertible and defined there, but such a state is not physical",
+            inverted.count(),
+            worst.inverted_tets,
+            worst.step
+        ));
+    }
     for i in 0..scene.obstacles.len() {
         let touched = history.iter().any(|s| {
             s.contact
