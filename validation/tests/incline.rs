@@ -112,8 +112,13 @@ fn the_block_sticks_on_the_incline_below_the_friction_angle() {
 /// A block body resting on a clamped plate body, `dhat` 0.1 mm, under gravity tilted by 30
 /// degrees; `contact` is the `[contact]` section's friction keys.
 fn block_on_plate(contact: &str) -> ResolvedScene {
+    resolve::build(&Scene::from_toml_str(&block_on_plate_text(contact), "block-on-plate").unwrap())
+        .unwrap()
+}
+
+fn block_on_plate_text(contact: &str) -> String {
     let t = 30.0f64.to_radians();
-    let text = format!(
+    format!(
         r#"name = "block-on-plate"
 method = "standard"
 
@@ -153,8 +158,33 @@ frames = 10
 "#,
         G * t.sin(),
         -G * t.cos()
-    );
-    resolve::build(&Scene::from_toml_str(&text, "block-on-plate").unwrap()).unwrap()
+    )
+}
+
+#[test]
+fn bad_friction_keys_are_refused_by_key() {
+    for (keys, key) in [
+        ("friction = -0.1", "contact.friction"),
+        ("friction = nan", "contact.friction"),
+        ("epsv = 0.0", "contact.epsv"),
+        (
+            "[[contact.pairs]]\nbodies = [\"block\", \"ball\"]\nfriction = 0.5",
+            "contact.pairs[0].bodies",
+        ),
+        (
+            "[[contact.pairs]]\nbodies = [\"block\", \"plate\"]\nfriction = -1.0",
+            "contact.pairs[0].friction",
+        ),
+        (
+            "[[contact.obstacles]]\nobstacle = 0\nfriction = 0.5",
+            "contact.obstacles[0].obstacle",
+        ),
+    ] {
+        let e = Scene::from_toml_str(&block_on_plate_text(keys), "block-on-plate")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(key), "{keys}: {e}");
+    }
 }
 
 #[test]
