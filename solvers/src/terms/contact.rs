@@ -76,7 +76,7 @@ const MAX_PENALTY_SCALE: f64 = 1e3;
 
 /// Lagged friction forces that moved by less than this fraction of the largest one have
 /// settled.
-pub const FRICTION_SETTLED: f64 = 1e-2;
+pub(crate) const FRICTION_SETTLED: f64 = 1e-2;
 
 /// Augmented-Lagrangian contact of `vertices` against `obstacles`.
 #[derive(Debug)]
@@ -123,7 +123,7 @@ impl Contact {
     }
 
     /// Friction with coefficient `friction[k]` against obstacle `k` and slip length `epsv`
-    /// (see [`crate::problem::friction`]); an error if the count is not the obstacles'.
+    /// (a length; see [`crate::FrictionSpec`]); an error if the count is not the obstacles'.
     pub fn set_friction(&mut self, friction: Vec<f64>, epsv: f64) -> Result<(), SolverError> {
         if friction.len() != self.obstacles.len() {
             return Err(SolverError::InvalidProblem(format!(
@@ -150,7 +150,7 @@ impl Contact {
     /// the obstacle's tangent plane at the vertex's position in `positions` (the obstacles
     /// where the current step's level puts them); the slip measured from `start`, where the
     /// obstacles stood at `start_level`. Returns whether the lagged forces `mu lambda`
-    /// settled: none moved by more than [`FRICTION_SETTLED`] of the largest.
+    /// settled: none moved by more than 1% of the largest.
     pub fn lag_friction(&self, start: &[Vec3], positions: &[Vec3], start_level: LoadLevel) -> bool {
         if self.friction.is_empty() {
             return true;

@@ -52,7 +52,7 @@ impl SurfaceFriction {
     /// Freezes the pairs `forces` (the barrier's pairs within `dhat` at the lagged state,
     /// [`super::SurfaceContact::pair_forces`]) with `positions` their nodes' lagged
     /// positions, the slip measured from `start`; returns whether the lagged forces `mu
-    /// lambda` settled: the same pairs, none moved by more than [`FRICTION_SETTLED`] of the
+    /// lambda` settled: the same pairs, none moved by more than 1% of the
     /// largest.
     pub fn lag(&self, start: &[Vec3], positions: &[Vec3], forces: &[PairForce]) -> bool {
         let bodies = &self.spec.node_bodies;
