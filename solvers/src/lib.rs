@@ -128,6 +128,7 @@ pub use model::dofs::Dofs;
 pub use model::regions::Regions;
 pub use nonlinear::report::{IterationReport, StepReport, Timings};
 pub use problem::builder::ProblemBuilder;
+pub use problem::friction::{FrictionSpec, SurfaceFrictionSpec};
 pub use problem::loads::{Dirichlet, Load, Motion, ScheduledLoad};
 pub use problem::material::{Epidermis, Kappa, Material, ZonalEnergy};
 pub use problem::material_model::{

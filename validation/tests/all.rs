@@ -11,6 +11,8 @@ mod dynamics;
 mod elements;
 mod energies;
 mod extremes;
+mod friction;
+mod incline;
 mod locking;
 mod newton;
 mod orderings;

@@ -390,6 +390,7 @@ pinned_scenes! {
     twist_cube => "twist-cube",
     band => "band",
     squeezed_creature => "squeezed-creature",
+    incline => "incline",
 }
 
 /// Every built-in scene has its pin tests, and every record of group `scenes` names one of

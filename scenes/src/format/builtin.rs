@@ -36,6 +36,7 @@ pub const BUILTIN: &[(&str, &str)] = builtin_scenes![
     "twist-cube",
     "band",
     "squeezed-creature",
+    "incline",
 ];
 
 /// The TOML text of a built-in scene.

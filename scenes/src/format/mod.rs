@@ -38,7 +38,7 @@ mod zones;
 pub use bodies::{BodyRef, BodySpec, PlacementSpec, RotationSpec, SCENE_BODY};
 pub use common::Vector;
 pub use conditions::{CurveSpec, DirichletSpec, LoadsSpec, MotionSpec, PressureSpec, TractionSpec};
-pub use contact::ContactSpec;
+pub use contact::{ContactSpec, ObstacleFrictionSpec, PairFrictionSpec, DEFAULT_EPSV};
 pub use load::{load_scene, SceneSource};
 pub use material::{
     material_keys, rename_aliases, ConstantSpec, MaterialSpec, RegionSpec, MATERIAL_ALIASES,

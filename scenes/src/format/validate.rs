@@ -165,15 +165,55 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
     Ok(())
 }
 
-/// `[contact]`: a positive reach.
+/// `[contact]`: a positive reach and slip length, finite non-negative friction
+/// coefficients, pairs of bodies the scene has, obstacles it has.
 fn contact(scene: &Scene) -> Result<(), Fault> {
-    match scene.contact.as_ref().and_then(|c| c.dhat) {
-        Some(dhat) if !(dhat.is_finite() && dhat > 0.0) => Err(fault(
-            "contact.dhat",
-            format!("{dhat} must be a positive distance (m)"),
-        )),
-        _ => Ok(()),
+    let Some(c) = scene.contact.as_ref() else {
+        return Ok(());
+    };
+    for (key, value) in [("contact.dhat", c.dhat), ("contact.epsv", c.epsv)] {
+        match value {
+            Some(v) if !(v.is_finite() && v > 0.0) => {
+                return Err(fault(key, format!("{v} must be a positive distance (m)")))
+            }
+            _ => {}
+        }
     }
+    let coefficient = |key: String, mu: f64| {
+        if mu.is_finite() && mu >= 0.0 {
+            Ok(())
+        } else {
+            Err(fault(
+                key,
+                format!("{mu} must be a finite, non-negative friction coefficient"),
+            ))
+        }
+    };
+    coefficient("contact.friction".into(), c.friction)?;
+    let names: Vec<&str> = scene.bodies().iter().map(|b| b.name).collect();
+    for (i, pair) in c.pairs.iter().enumerate() {
+        coefficient(format!("contact.pairs[{i}].friction"), pair.friction)?;
+        if let Some(body) = pair.bodies.iter().find(|b| !names.contains(&b.as_str())) {
+            return Err(fault(
+                format!("contact.pairs[{i}].bodies"),
+                format!("no body named '{body}' (bodies: {})", names.join(", ")),
+            ));
+        }
+    }
+    for (i, o) in c.obstacles.iter().enumerate() {
+        coefficient(format!("contact.obstacles[{i}].friction"), o.friction)?;
+        if o.obstacle >= scene.obstacles.len() {
+            return Err(fault(
+                format!("contact.obstacles[{i}].obstacle"),
+                format!(
+                    "no obstacle {} (the scene has {}, counted from 0)",
+                    o.obstacle,
+                    scene.obstacles.len()
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `[material]` gives one stiffness; every `[[regions]]` entry names a selection.

@@ -7,6 +7,7 @@
 //! this module on top.
 
 pub mod bodies;
+pub mod friction;
 pub mod material;
 pub mod mesh;
 pub mod problem;
@@ -22,7 +23,7 @@ use crate::error::SceneError;
 use crate::format::{limits, validate, Scene};
 use isochor_mesh::element::Part;
 use isochor_mesh::Zones;
-use isochor_solvers::{Method, Problem, Settings, Stepping, SurfaceContactSpec};
+use isochor_solvers::{FrictionSpec, Method, Problem, Settings, Stepping, SurfaceContactSpec};
 
 /// The default reach of the contact barrier, relative to the rest mesh's bounding-box
 /// diagonal (IPC's default, Li et al. 2020).
@@ -45,6 +46,9 @@ pub struct ResolvedScene {
     pub bodies: SceneBodies,
     /// Barrier contact between surfaces, if the scene has `[contact]`.
     pub surface_contact: Option<SurfaceContactSpec>,
+    /// Friction against the obstacles and between surfaces, if `[contact]` gives a non-zero
+    /// coefficient.
+    pub friction: Option<FrictionSpec>,
     /// What a user should know about how the meshes were taken (the run's warnings).
     pub notices: Vec<String>,
 }
@@ -87,6 +91,13 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
             node_bodies: bodies.node_bodies(mesh.mesh.num_nodes()),
         }
     });
+    let friction = scene
+        .contact
+        .as_ref()
+        .zip(surface_contact.as_ref())
+        .and_then(|(c, s)| {
+            friction::friction(c, &bodies, mesh.mesh.num_nodes(), obstacles.len(), s.dhat)
+        });
     let problem = Problem {
         mesh: mesh.mesh,
         method,
@@ -113,6 +124,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         zones,
         bodies,
         surface_contact,
+        friction,
         notices,
     })
 }

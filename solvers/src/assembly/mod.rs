@@ -73,6 +73,9 @@ impl<'m> System<'m> {
         if let Some(c) = &model.surface_contact {
             push(c.hessian_pattern());
         }
+        if let Some(f) = &model.surface_friction {
+            push(f.hessian_pattern());
+        }
         if let Some(i) = &inertia {
             push(i.hessian_pattern());
         }
@@ -124,34 +127,55 @@ impl<'m> System<'m> {
                     .iter()
                     .map(|c| c as &dyn EnergyTerm),
             )
+            .chain(
+                self.model
+                    .surface_friction
+                    .iter()
+                    .map(|f| f as &dyn EnergyTerm),
+            )
             .chain(self.inertia.iter().map(|i| i as &dyn EnergyTerm))
     }
 
-    /// Takes the surface-contact pairs at `x` as the pattern's; when they changed, rebuilds
-    /// the Hessian layout with the new contact block and returns `true` (the solvers then
-    /// redo their symbolic analysis). Without surface contact, `false`.
+    /// Takes the surface-contact pairs at `x` as the pattern's, and the surface friction's
+    /// pairs of its last lag; when either changed, rebuilds the Hessian layout with the new
+    /// blocks and returns `true` (the solvers then redo their symbolic analysis). Without
+    /// surface contact, `false`.
     pub fn update_contact_pattern(&mut self, x: &[Vec3]) -> Result<bool, SolverError> {
         let Some(contact) = &self.model.surface_contact else {
             return Ok(false);
         };
-        if !contact.update(x) {
-            return Ok(false);
-        }
-        // The block's index: the model's terms, then the folded constraints, the obstacles.
+        // The blocks' index: the model's terms, then the folded constraints, the obstacles.
         let block = self.model.terms.len()
             + usize::from(self.model.augmented.is_some())
             + usize::from(self.model.contact.is_some());
-        let (start, end) = (self.offsets[block], self.offsets[block + 1]);
-        let new = contact.hessian_pattern();
-        let grown = new.len() as isize - (end - start) as isize;
-        self.pairs.splice(start..end, new);
-        for offset in &mut self.offsets[block + 1..] {
-            *offset = (*offset as isize + grown) as usize;
+        let mut changed = false;
+        if contact.update(x) {
+            self.splice(block, contact.hessian_pattern());
+            changed = true;
+        }
+        if let Some(friction) = &self.model.surface_friction {
+            if friction.take_pattern_change() {
+                self.splice(block + 1, friction.hessian_pattern());
+                changed = true;
+            }
+        }
+        if !changed {
+            return Ok(false);
         }
         self.hessian = Layout::hessian(&self.pairs, &self.model.dofs)?;
         self.hessian_values = vec![0.0; self.pairs.len()];
         self.pattern_rebuilds += 1;
         Ok(true)
+    }
+
+    /// Replaces the pattern of block `block` by `new`.
+    fn splice(&mut self, block: usize, new: Vec<(usize, usize)>) {
+        let (start, end) = (self.offsets[block], self.offsets[block + 1]);
+        let grown = new.len() as isize - (end - start) as isize;
+        self.pairs.splice(start..end, new);
+        for offset in &mut self.offsets[block + 1..] {
+            *offset = (*offset as isize + grown) as usize;
+        }
     }
 
     /// The largest step along `direction` (three entries per node) from `x` that no pair of

@@ -76,12 +76,17 @@ pub fn tangent_basis(kind: DistanceKind, x: &[Vec3; 4]) -> Matrix3x2<f64> {
             let e = x[b] - x[a];
             (e, e.cross(&(x[p] - x[a])).cross(&e))
         }
-        DistanceKind::PointPoint(i, j) => {
-            let n = x[i] - x[j];
-            (orthogonal(&n), n)
-        }
+        DistanceKind::PointPoint(i, j) => return plane_basis(&(x[i] - x[j])),
     };
     let t0 = first.normalize();
+    let t1 = normal.cross(&t0).normalize();
+    Matrix3x2::from_columns(&[t0, t1])
+}
+
+/// Two orthonormal directions (columns) of the plane normal to `normal` (any length but
+/// zero): the tangent plane of an obstacle at a vertex, or of a point-point pair.
+pub fn plane_basis(normal: &Vec3) -> Matrix3x2<f64> {
+    let t0 = orthogonal(normal);
     let t1 = normal.cross(&t0).normalize();
     Matrix3x2::from_columns(&[t0, t1])
 }

@@ -11,6 +11,6 @@ mod potential;
 mod stiffness;
 
 pub use barrier::{barrier, barrier_first_derivative, barrier_second_derivative, normal_force};
-pub use friction::{friction_f0, friction_f1, tangent_basis, FrictionPair};
-pub use potential::BarrierPotential;
+pub use friction::{friction_f0, friction_f1, plane_basis, tangent_basis, FrictionPair};
+pub use potential::{BarrierPotential, PairForce};
 pub use stiffness::{initial_barrier_stiffness, update_barrier_stiffness, StiffnessBounds};

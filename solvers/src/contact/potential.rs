@@ -4,7 +4,7 @@
 //! every pair, on the global vector of node positions (three coordinates per node). Pairs
 //! are IPC's: a point-edge distance reached from two triangles counts twice.
 
-use super::barrier::{barrier, barrier_first_derivative, barrier_second_derivative};
+use super::barrier::{barrier, barrier_first_derivative, barrier_second_derivative, normal_force};
 use isochor_energies::project_to_psd;
 use isochor_mesh::contact::{
     edge_edge_distance_kind, edge_edge_mollifier, edge_edge_mollifier_derivatives,
@@ -21,6 +21,19 @@ pub struct BarrierPotential {
     pub dhat: f64,
     /// The barrier stiffness.
     pub kappa: f64,
+}
+
+/// A pair within `dhat` with the normal force it carries: what lagged friction freezes (Li
+/// et al. 2020, sec. 5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairForce {
+    /// The pair's four nodes (point then triangle, or edge then edge).
+    pub nodes: [usize; 4],
+    /// Its closest features at the state it was taken at.
+    pub kind: DistanceKind,
+    /// The magnitude of its contact force, `-d(kappa e b)/d(distance)` (edge-edge pairs
+    /// with their mollifier `e` held fixed, as IPC does).
+    pub lambda: f64,
 }
 
 /// A pair of the candidate set: its four nodes, and for edge-edge pairs the mollifier
@@ -206,6 +219,33 @@ impl BarrierPotential {
             }
         }
         triplets
+    }
+
+    /// Every candidate pair within `dhat` at `x` with its closest features and normal force.
+    pub fn pair_forces(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> Vec<PairForce> {
+        pairs(surface, candidates, rest)
+            .filter_map(|pair| {
+                let y = pair.nodes.map(|n| x[n]);
+                let kind = pair.kind(&y);
+                let d = kind.squared_distance(&y);
+                if !(d > 0.0 && d < self.dhat_sq()) {
+                    return None;
+                }
+                let mollifier = pair.eps_x.map_or(1.0, |eps| edge_edge_mollifier(&y, eps));
+                let lambda = mollifier * normal_force(self.kappa, d, self.dhat_sq());
+                (lambda > 0.0).then_some(PairForce {
+                    nodes: pair.nodes,
+                    kind,
+                    lambda,
+                })
+            })
+            .collect()
     }
 
     /// The smallest distance (not squared) over the candidate pairs at `x`; `+inf` for none.

@@ -3,6 +3,7 @@
 //! constraint set of a mixed or zonal method, the lumped masses.
 
 use crate::error::SolverError;
+use crate::problem::friction::FrictionSpec;
 use crate::problem::loads::{Load, ScheduledLoad};
 use crate::problem::material::ZonalEnergy;
 use crate::problem::method::Method;
@@ -11,7 +12,7 @@ use crate::terms::{
     AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces,
     FollowerPressure,
 };
-use crate::terms::{SurfaceContact, SurfaceContactSpec};
+use crate::terms::{SurfaceContact, SurfaceContactSpec, SurfaceFriction};
 use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
     PerElementConstraints, ZonalConstraints,
@@ -59,6 +60,8 @@ pub struct Model {
     pub contact: Option<Contact>,
     /// Barrier contact between surfaces (between bodies, and of a surface with itself).
     pub surface_contact: Option<SurfaceContact>,
+    /// Lagged friction between surfaces (with surface contact only).
+    pub surface_friction: Option<SurfaceFriction>,
     /// Rest volume measured by each constraint row (scales the constraint residual).
     pub row_volumes: Vec<f64>,
     /// The material of every element (stresses and output pressures).
@@ -309,6 +312,7 @@ impl Model {
             mu,
             contact,
             surface_contact: None,
+            surface_friction: None,
         };
         model.set_contact_stiffness(None);
         Ok(model)
@@ -323,6 +327,39 @@ impl Model {
         let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
         let contact = SurfaceContact::new(spec, surface, self.mesh.nodes().to_vec(), self.mu * h)?;
         self.surface_contact = Some(contact);
+        Ok(())
+    }
+
+    /// Turns friction on: against the obstacles (with a non-zero coefficient), and between
+    /// surfaces (needs surface contact, [`Model::set_surface_contact`], first).
+    pub fn set_friction(&mut self, spec: FrictionSpec) -> Result<(), SolverError> {
+        spec.validate()?;
+        match &mut self.contact {
+            Some(contact) => contact.set_friction(spec.obstacles, spec.epsv)?,
+            None if !spec.obstacles.is_empty() => {
+                return Err(SolverError::InvalidProblem(format!(
+                    "friction: {} obstacle coefficients for a problem without obstacles",
+                    spec.obstacles.len()
+                )))
+            }
+            None => {}
+        }
+        self.surface_friction = match spec.surfaces {
+            None => None,
+            Some(_) if self.surface_contact.is_none() => {
+                return Err(SolverError::InvalidProblem(
+                    "friction between surfaces needs surface contact".into(),
+                ))
+            }
+            Some(surfaces) if surfaces.node_bodies.len() != self.mesh.num_nodes() => {
+                return Err(SolverError::InvalidProblem(format!(
+                    "friction: {} node bodies for {} nodes",
+                    surfaces.node_bodies.len(),
+                    self.mesh.num_nodes()
+                )))
+            }
+            Some(surfaces) => Some(SurfaceFriction::new(surfaces, spec.epsv)),
+        };
         Ok(())
     }
 

@@ -72,6 +72,9 @@ pub struct StepReport {
     pub wall_time: Duration,
     /// Contact multiplier updates (outer augmented-Lagrangian iterations; 0 without obstacles).
     pub contact_iterations: usize,
+    /// Lags of the friction's normal forces after the first (0 without friction): the solves
+    /// the friction took beyond the contact's own.
+    pub friction_lags: usize,
     /// Contact forces at the accepted state (zero without obstacles).
     pub contact: ContactSummary,
     /// Why the attempt failed, if it was cut (retried with a smaller increment) or ended

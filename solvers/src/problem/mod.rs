@@ -3,6 +3,7 @@
 //! names.
 
 pub mod builder;
+pub mod friction;
 pub mod loads;
 pub mod material;
 pub mod material_model;

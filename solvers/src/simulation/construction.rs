@@ -4,6 +4,7 @@ use super::state::{Checkpoint, State};
 use super::Simulation;
 use crate::error::SolverError;
 use crate::model::{Model, NonlinearScheme};
+use crate::problem::friction::FrictionSpec;
 use crate::problem::schedule::LoadLevel;
 use crate::problem::Problem;
 use crate::settings::{LinearSolver, Settings};
@@ -65,6 +66,15 @@ impl Simulation {
     /// a body list of another length than the nodes.
     pub fn set_surface_contact(&mut self, spec: SurfaceContactSpec) -> Result<(), SolverError> {
         self.model.set_surface_contact(spec)
+    }
+
+    /// Turns lagged smoothed Coulomb friction on (Li et al. 2020, sec. 5): against the
+    /// obstacles (one coefficient each, in the problem's order; none for none) and, with
+    /// `spec.surfaces`, between surfaces, which needs [`Self::set_surface_contact`] first.
+    /// Errors: a negative or non-finite coefficient, a non-positive `epsv`, a count of
+    /// coefficients or node bodies that is not the problem's.
+    pub fn set_friction(&mut self, spec: FrictionSpec) -> Result<(), SolverError> {
+        self.model.set_friction(spec)
     }
 
     /// Sets the velocity of every node (the initial velocity of a dynamic run; quasi-static

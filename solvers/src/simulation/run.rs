@@ -81,7 +81,8 @@ impl Simulation {
         while !stepper.finished(&progress) {
             let attempt = stepper.next(&progress);
             let step = progress.steps + 1;
-            let (x, p, mut report, result) = run.attempt(&self.state, &attempt, step);
+            let start_level = stepper.level(self.state.t);
+            let (x, p, mut report, result) = run.attempt(&self.state, &attempt, start_level, step);
             if let Err(e) = result {
                 report.converged = false;
                 report.failure = Some(e.to_string());
@@ -210,13 +211,14 @@ impl<'s> Run<'s> {
         })
     }
 
-    /// Attempts step `step` from `state`: the positions and multipliers it ended on, its
-    /// log, and whether it converged. A failed attempt puts the contact multipliers back to
-    /// where they stood at `state`.
+    /// Attempts step `step` from `state` (where the loads stood at `start_level`): the
+    /// positions and multipliers it ended on, its log, and whether it converged. A failed
+    /// attempt puts the contact multipliers back to where they stood at `state`.
     fn attempt(
         &mut self,
         state: &State,
         attempt: &Attempt,
+        start_level: LoadLevel,
         step: usize,
     ) -> (Vec<Vec3>, Vec<f64>, StepReport, Result<(), SolverError>) {
         let step_start = Instant::now();
@@ -236,8 +238,13 @@ impl<'s> Run<'s> {
             increment: attempt.increment,
             ..StepReport::default()
         };
+        let friction = Friction {
+            start: &state.positions,
+            start_level,
+        };
+        friction.lag(&self.system, &x);
         let result = self
-            .solve(&mut x, &mut p, &target, &mut report)
+            .solve(&mut x, &mut p, &target, &friction, &mut report)
             .and_then(|()| self.check_domain(&x));
         if let Some(contact) = &self.system.model.contact {
             report.contact = contact.summary(&x);
@@ -269,12 +276,13 @@ impl<'s> Run<'s> {
     }
 
     /// The method's own solve of one step, inside the contact's projected multiplier
-    /// updates (its module docs).
+    /// updates (its module docs) and the friction's lags of the normal forces.
     fn solve(
         &mut self,
         x: &mut [Vec3],
         p: &mut [f64],
         target: &StepTarget,
+        friction: &Friction<'_>,
         report: &mut StepReport,
     ) -> Result<(), SolverError> {
         let system = &mut self.system;
@@ -291,14 +299,33 @@ impl<'s> Run<'s> {
                 Err(SolverError::NotConverged { .. }) if settings.accept_unconverged => Ok(()),
                 other => other,
             };
-            let Some(contact) = &system.model.contact else {
+            let model = system.model;
+            let has_friction = model.surface_friction.is_some()
+                || model.contact.as_ref().is_some_and(|c| c.has_friction());
+            if model.contact.is_none() && !has_friction {
                 return solved;
-            };
+            }
             solved?;
-            report.contact_iterations += 1;
-            if contact.update(x, self.plan.contact_tolerance) {
+            let converged = match &model.contact {
+                Some(contact) => {
+                    report.contact_iterations += 1;
+                    contact.update(x, self.plan.contact_tolerance)
+                }
+                None => true,
+            };
+            // Friction lagged again at the solution (the obstacles' at the multipliers just
+            // updated), solved again until its forces settle, a bounded number of times.
+            let settled =
+                !has_friction || friction.lag(system, x) || report.friction_lags >= MAX_LAGS;
+            if !settled {
+                report.friction_lags += 1;
+            }
+            if converged && settled {
                 return Ok(());
             }
+            let Some(contact) = &model.contact else {
+                continue;
+            };
             if report.contact_iterations >= settings.max_contact_iterations {
                 report.converged = false;
                 return Err(SolverError::ContactNotConverged {
@@ -339,6 +366,35 @@ impl<'s> Run<'s> {
             multipliers: p,
             t: attempt.level.t,
         })
+    }
+}
+
+/// Lags of the friction's normal forces beyond the first, per step.
+const MAX_LAGS: usize = 4;
+
+/// Where a step's friction measures its slip from.
+struct Friction<'a> {
+    /// The positions at the step's start.
+    start: &'a [Vec3],
+    /// Where the loads (and obstacles) stood then.
+    start_level: LoadLevel,
+}
+
+impl Friction<'_> {
+    /// Lags every friction term of `system` at `x`: the obstacles' at their multipliers, the
+    /// surfaces' at the barrier's forces; returns whether their forces settled (true
+    /// without friction).
+    fn lag(&self, system: &System<'_>, x: &[Vec3]) -> bool {
+        let model = system.model;
+        let obstacles = model
+            .contact
+            .as_ref()
+            .is_none_or(|c| c.lag_friction(self.start, x, self.start_level));
+        let surfaces = match (&model.surface_friction, &model.surface_contact) {
+            (Some(friction), Some(contact)) => friction.lag(self.start, x, &contact.pair_forces(x)),
+            _ => true,
+        };
+        obstacles && surfaces
     }
 }
 

@@ -255,15 +255,19 @@ impl Stepper {
                 frame: next.frame,
             };
         }
-        let t = progress.t + progress.increment;
         Attempt {
-            level: if self.dynamic {
-                LoadLevel::dynamic(t, self.duration)
-            } else {
-                LoadLevel::quasi_static(t)
-            },
+            level: self.level(progress.t + progress.increment),
             increment: progress.increment,
             frame: None,
+        }
+    }
+
+    /// The level at load parameter or time `t`.
+    pub fn level(&self, t: f64) -> LoadLevel {
+        if self.dynamic {
+            LoadLevel::dynamic(t, self.duration)
+        } else {
+            LoadLevel::quasi_static(t)
         }
     }
 

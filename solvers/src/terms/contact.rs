@@ -24,8 +24,16 @@
 //! Lagrangian framework (Nocedal & Wright, Framework 17.3), an update whose largest
 //! constraint violation (`|lambda_new - lambda| / rho`) is not below a quarter of the previous
 //! one multiplies every penalty by 10 for the rest of the step (at most 10^3 times the base).
+//!
+//! Friction (optional, per obstacle): lagged smoothed Coulomb friction as in IPC (Li et al.
+//! 2020, sec. 5), `mu_k lambda_ik f0(|T^T (u_i - u_k)|)` per pair, with the multiplier
+//! `lambda_ik` (the normal force) and the obstacle's tangent plane `T` at the vertex frozen
+//! at the last [`Contact::lag_friction`], `u_i` the vertex's displacement over the step and
+//! `u_k` the obstacle's own translation over it ([`crate::contact::FrictionPair`]). Without
+//! friction the term is exactly the frictionless one.
 
 use super::EnergyTerm;
+use crate::contact::{plane_basis, FrictionPair};
 use crate::error::SolverError;
 use crate::problem::obstacle::Obstacle;
 use crate::problem::schedule::LoadLevel;
@@ -66,6 +74,10 @@ const PENALTY_GROWTH: f64 = 10.0;
 /// ...up to this multiple of the base penalties.
 const MAX_PENALTY_SCALE: f64 = 1e3;
 
+/// Lagged friction forces that moved by less than this fraction of the largest one have
+/// settled.
+pub(crate) const FRICTION_SETTLED: f64 = 1e-2;
+
 /// Augmented-Lagrangian contact of `vertices` against `obstacles`.
 #[derive(Debug)]
 pub struct Contact {
@@ -74,6 +86,19 @@ pub struct Contact {
     /// Penalty `rho` of each candidate vertex (force per length).
     stiffness: Vec<f64>,
     state: RwLock<ContactState>,
+    /// The friction coefficient of each obstacle (empty: frictionless) and the slip length.
+    friction: Vec<f64>,
+    epsv: f64,
+    lagged: RwLock<LaggedFriction>,
+}
+
+/// The frozen friction of every vertex-obstacle pair (vertex-major, `None` without a normal
+/// force), the candidates' start positions and the obstacles' translations over the step.
+#[derive(Debug, Default)]
+struct LaggedFriction {
+    pairs: Vec<Option<FrictionPair>>,
+    start: Vec<Vec3>,
+    motion: Vec<Vec3>,
 }
 
 impl Contact {
@@ -91,7 +116,85 @@ impl Contact {
                 penalty_scale: 1.0,
                 last_violation: None,
             }),
+            friction: Vec::new(),
+            epsv: 0.0,
+            lagged: RwLock::new(LaggedFriction::default()),
         }
+    }
+
+    /// Friction with coefficient `friction[k]` against obstacle `k` and slip length `epsv`
+    /// (a length; see [`crate::FrictionSpec`]); an error if the count is not the obstacles'.
+    pub fn set_friction(&mut self, friction: Vec<f64>, epsv: f64) -> Result<(), SolverError> {
+        if friction.len() != self.obstacles.len() {
+            return Err(SolverError::InvalidProblem(format!(
+                "{} friction coefficients for {} obstacles",
+                friction.len(),
+                self.obstacles.len()
+            )));
+        }
+        self.friction = if friction.iter().all(|&mu| mu == 0.0) {
+            Vec::new()
+        } else {
+            friction
+        };
+        self.epsv = epsv;
+        Ok(())
+    }
+
+    /// Whether any obstacle has friction.
+    pub fn has_friction(&self) -> bool {
+        !self.friction.is_empty()
+    }
+
+    /// Freezes the friction of every pair: its normal force (the current multiplier) and
+    /// the obstacle's tangent plane at the vertex's position in `positions` (the obstacles
+    /// where the current step's level puts them); the slip measured from `start`, where the
+    /// obstacles stood at `start_level`. Returns whether the lagged forces `mu lambda`
+    /// settled: none moved by more than 1% of the largest.
+    pub fn lag_friction(&self, start: &[Vec3], positions: &[Vec3], start_level: LoadLevel) -> bool {
+        if self.friction.is_empty() {
+            return true;
+        }
+        let (multipliers, level) = {
+            let state = self.state();
+            (state.multipliers.clone(), state.level)
+        };
+        let m = self.obstacles.len();
+        let pairs = self
+            .pairs(positions, level)
+            .map(|(a, k, _, n, _)| {
+                let mu_lambda = self.friction[k] * multipliers[a * m + k];
+                (mu_lambda > 0.0 && n.norm() > 0.0).then(|| FrictionPair {
+                    basis: plane_basis(&n),
+                    weights: [1.0, -1.0, 0.0, 0.0],
+                    mu_lambda,
+                    epsv: self.epsv,
+                })
+            })
+            .collect::<Vec<Option<FrictionPair>>>();
+        let motion = self
+            .obstacles
+            .iter()
+            .map(|o| {
+                let curve = o.curve.as_ref();
+                o.translate * (level.motion_parameter(curve) - start_level.motion_parameter(curve))
+            })
+            .collect();
+        let force = |p: &Option<FrictionPair>| p.as_ref().map_or(0.0, |p| p.mu_lambda);
+        let largest = pairs.iter().map(force).fold(0.0, f64::max);
+        let mut lagged = self.lagged.write().unwrap_or_else(|e| e.into_inner());
+        let settled = lagged.pairs.len() == pairs.len()
+            && lagged
+                .pairs
+                .iter()
+                .zip(&pairs)
+                .all(|(a, b)| (force(a) - force(b)).abs() <= FRICTION_SETTLED * largest);
+        *lagged = LaggedFriction {
+            pairs,
+            start: self.vertices.iter().map(|&v| start[v]).collect(),
+            motion,
+        };
+        settled
     }
 
     fn state(&self) -> RwLockWriteGuard<'_, ContactState> {
@@ -233,6 +336,47 @@ impl Contact {
     }
 }
 
+impl Contact {
+    /// The lagged friction at `x`: its energy, gradient and Hessian (the vertex's `3 x 3`
+    /// block of the pair's, positive semidefinite) added in.
+    fn add_friction(
+        &self,
+        x: &[Vec3],
+        mut gradient: Option<&mut [f64]>,
+        mut hessian: Option<&mut [f64]>,
+    ) -> f64 {
+        let lagged = self.lagged.read().unwrap_or_else(|e| e.into_inner());
+        let m = self.obstacles.len();
+        let mut energy = 0.0;
+        for (index, pair) in lagged.pairs.iter().enumerate() {
+            let Some(pair) = pair else { continue };
+            let (a, k) = (index / m, index % m);
+            let v = self.vertices[a];
+            let u = [
+                x[v] - lagged.start[a],
+                lagged.motion[k],
+                Vec3::zeros(),
+                Vec3::zeros(),
+            ];
+            let d = pair.derivatives(&u);
+            energy += d.value;
+            if let Some(g) = gradient.as_deref_mut() {
+                for c in 0..3 {
+                    g[3 * v + c] += d.gradient[c];
+                }
+            }
+            if let Some(h) = hessian.as_deref_mut() {
+                for c in 0..3 {
+                    for r in 0..3 {
+                        h[9 * a + 3 * c + r] += d.hessian[(r, c)];
+                    }
+                }
+            }
+        }
+        energy
+    }
+}
+
 impl EnergyTerm for Contact {
     fn name(&self) -> &'static str {
         "contact"
@@ -289,6 +433,9 @@ impl EnergyTerm for Contact {
                     }
                 }
             }
+        }
+        if !self.friction.is_empty() {
+            energy += self.add_friction(x, gradient, hessian);
         }
         if !energy.is_finite() {
             return Err(SolverError::NonFinite("the contact energy"));

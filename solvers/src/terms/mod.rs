@@ -11,6 +11,7 @@ mod faces;
 mod inertia;
 mod pressure;
 mod surface_contact;
+mod surface_friction;
 
 pub use augmented::AugmentedConstraints;
 pub use contact::{Contact, ContactState, ContactSummary};
@@ -21,6 +22,7 @@ pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
 pub use surface_contact::{SurfaceContact, SurfaceContactSpec};
+pub use surface_friction::SurfaceFriction;
 
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;

@@ -10,7 +10,7 @@
 //! `dhat` of the trial state itself, so the line search sees every pair.
 
 use super::{block_pattern, EnergyTerm};
-use crate::contact::{BarrierPotential, StiffnessBounds};
+use crate::contact::{BarrierPotential, PairForce, StiffnessBounds};
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;
 use isochor_mesh::contact::{
@@ -155,6 +155,13 @@ impl SurfaceContact {
     /// The number of pairs of the current pattern.
     pub fn num_pairs(&self) -> usize {
         self.read().candidates.len()
+    }
+
+    /// The pairs within `dhat` at `x` with their normal forces at the current stiffness:
+    /// what lagged friction is built from.
+    pub fn pair_forces(&self, x: &[Vec3]) -> Vec<PairForce> {
+        self.potential()
+            .pair_forces(&self.surface, &self.candidates(x), &self.rest, x)
     }
 
     /// The smallest distance between two surface primitives within `dhat` at `x` (`+inf`

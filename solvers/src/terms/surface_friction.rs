@@ -1,0 +1,143 @@
+//! Lagged smoothed Coulomb friction between surfaces (Li et al. 2020, sec. 5, eq. 15) as an
+//! energy term: `D(x) = sum_k mu_k lambda_k f0(|T_k^T Gamma_k (x - x_start)|)` over the
+//! barrier pairs within `dhat` at the lagged state, each with its normal force `lambda_k`,
+//! tangent basis `T_k` and closest-point weights `Gamma_k` frozen there
+//! ([`crate::contact::FrictionPair`]); `x_start` is the step's start, so the slip is the
+//! step's displacement increment (quasi-static) or velocity times time step (dynamics).
+//!
+//! The stepping driver lags the pairs at the step's start, solves, and lags them again at
+//! the solution until their forces settle (a bounded number of times). The pairs, and so the
+//! Hessian pattern, change only at those lags.
+
+use super::contact::FRICTION_SETTLED;
+use super::{block_pattern, EnergyTerm};
+use crate::contact::{FrictionPair, PairForce};
+use crate::error::SolverError;
+use crate::problem::friction::SurfaceFrictionSpec;
+use crate::problem::schedule::LoadLevel;
+use isochor_mesh::Vec3;
+use std::sync::{RwLock, RwLockReadGuard};
+
+/// The frozen pairs and the step's start positions.
+#[derive(Debug, Default)]
+struct Lagged {
+    start: Vec<Vec3>,
+    pairs: Vec<([usize; 4], FrictionPair)>,
+    /// Whether the pairs' nodes changed since the pattern was last taken.
+    pattern_changed: bool,
+}
+
+/// Friction between the surfaces of a mesh.
+#[derive(Debug)]
+pub struct SurfaceFriction {
+    spec: SurfaceFrictionSpec,
+    epsv: f64,
+    lagged: RwLock<Lagged>,
+}
+
+impl SurfaceFriction {
+    /// Friction of `spec` with slip length `epsv`, without pairs until the first lag.
+    pub fn new(spec: SurfaceFrictionSpec, epsv: f64) -> Self {
+        SurfaceFriction {
+            spec,
+            epsv,
+            lagged: RwLock::new(Lagged::default()),
+        }
+    }
+
+    fn read(&self) -> RwLockReadGuard<'_, Lagged> {
+        self.lagged.read().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Freezes the pairs `forces` (the barrier's pairs within `dhat` at the lagged state,
+    /// [`super::SurfaceContact::pair_forces`]) with `positions` their nodes' lagged
+    /// positions, the slip measured from `start`; returns whether the lagged forces `mu
+    /// lambda` settled: the same pairs, none moved by more than 1% of the
+    /// largest.
+    pub fn lag(&self, start: &[Vec3], positions: &[Vec3], forces: &[PairForce]) -> bool {
+        let bodies = &self.spec.node_bodies;
+        let pairs: Vec<([usize; 4], FrictionPair)> = forces
+            .iter()
+            .filter_map(|f| {
+                // Side one is node 0 (the point, or the first edge), side two node 3.
+                let mu = self
+                    .spec
+                    .coefficient(bodies[f.nodes[0]], bodies[f.nodes[3]]);
+                (mu > 0.0).then(|| {
+                    let y = f.nodes.map(|n| positions[n]);
+                    (
+                        f.nodes,
+                        FrictionPair::new(f.kind, &y, mu * f.lambda, self.epsv),
+                    )
+                })
+            })
+            .collect();
+        let mut lagged = self.lagged.write().unwrap_or_else(|e| e.into_inner());
+        let same_nodes = pairs.len() == lagged.pairs.len()
+            && pairs.iter().zip(&lagged.pairs).all(|(a, b)| a.0 == b.0);
+        let largest = pairs.iter().map(|p| p.1.mu_lambda).fold(0.0, f64::max);
+        let settled = same_nodes
+            && pairs
+                .iter()
+                .zip(&lagged.pairs)
+                .all(|(a, b)| (a.1.mu_lambda - b.1.mu_lambda).abs() <= FRICTION_SETTLED * largest);
+        lagged.pattern_changed |= !same_nodes;
+        lagged.pairs = pairs;
+        lagged.start = start.to_vec();
+        settled
+    }
+
+    /// Whether the pairs' nodes changed since the last call (the pattern must be rebuilt).
+    pub fn take_pattern_change(&self) -> bool {
+        let mut lagged = self.lagged.write().unwrap_or_else(|e| e.into_inner());
+        std::mem::take(&mut lagged.pattern_changed)
+    }
+
+    /// The number of frozen pairs.
+    pub fn num_pairs(&self) -> usize {
+        self.read().pairs.len()
+    }
+}
+
+impl EnergyTerm for SurfaceFriction {
+    fn name(&self) -> &'static str {
+        "surface friction"
+    }
+
+    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        self.read()
+            .pairs
+            .iter()
+            .flat_map(|(nodes, _)| block_pattern(nodes).collect::<Vec<_>>())
+            .collect()
+    }
+
+    /// `D(x)`, its gradient and its Hessian, each pair's block positive semidefinite by
+    /// construction ([`FrictionPair::derivatives`]).
+    fn evaluate(
+        &self,
+        x: &[Vec3],
+        _level: &LoadLevel,
+        mut gradient: Option<&mut [f64]>,
+        mut hessian: Option<&mut [f64]>,
+    ) -> Result<f64, SolverError> {
+        let lagged = self.read();
+        let mut energy = 0.0;
+        for (k, (nodes, pair)) in lagged.pairs.iter().enumerate() {
+            let u = nodes.map(|n| x[n] - lagged.start[n]);
+            let d = pair.derivatives(&u);
+            energy += d.value;
+            if let Some(g) = gradient.as_deref_mut() {
+                super::scatter(nodes, d.gradient.as_slice(), g);
+            }
+            if let Some(h) = hessian.as_deref_mut() {
+                // Column-major, as `block_pattern` lists the entries.
+                h[144 * k..144 * (k + 1)].copy_from_slice(d.hessian.as_slice());
+            }
+        }
+        if !energy.is_finite() {
+            return Err(SolverError::NonFinite("the friction energy"));
+        }
+        Ok(energy)
+    }
+}
