@@ -133,6 +133,7 @@ pub use problem::material::{Epidermis, Kappa, Material, ZonalEnergy};
 pub use problem::material_model::{
     Constant, ConstantError, ConstantKind, ConstantValue, DensityForm, MaterialModel, ModelInfo,
 };
+pub use problem::mesh_obstacle::{AxisRotation, MeshObstacle};
 pub use problem::method::Method;
 pub use problem::obstacle::{Obstacle, Shape};
 pub use problem::schedule::{Curve, LoadLevel};

@@ -5,6 +5,7 @@
 use crate::error::SolverError;
 use crate::problem::loads::{Load, ScheduledLoad};
 use crate::problem::material::ZonalEnergy;
+use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::method::Method;
 use crate::problem::Problem;
 use crate::terms::{
@@ -323,6 +324,18 @@ impl Model {
         let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
         let contact = SurfaceContact::new(spec, surface, self.mesh.nodes().to_vec(), self.mu * h)?;
         self.surface_contact = Some(contact);
+        Ok(())
+    }
+
+    /// Adds meshed rigid obstacles to the barrier contact of [`Self::set_surface_contact`]
+    /// (which must be on).
+    pub fn set_mesh_obstacles(&mut self, obstacles: Vec<MeshObstacle>) -> Result<(), SolverError> {
+        let Some(contact) = self.surface_contact.take() else {
+            return Err(SolverError::InvalidProblem(
+                "meshed obstacles need surface contact: turn it on first".into(),
+            ));
+        };
+        self.surface_contact = Some(contact.with_obstacles(obstacles)?);
         Ok(())
     }
 

@@ -6,6 +6,7 @@ pub mod builder;
 pub mod loads;
 pub mod material;
 pub mod material_model;
+pub mod mesh_obstacle;
 pub mod method;
 pub mod obstacle;
 pub mod schedule;

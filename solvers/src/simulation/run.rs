@@ -99,6 +99,9 @@ impl Simulation {
             self.state = run
                 .accept(&self.state, x, p, &attempt)
                 .map_err(|e| failure(e, step, &self.state, &reports))?;
+            if let Some(contact) = &self.model.surface_contact {
+                contact.accept_step();
+            }
             let report = reports.last().expect("pushed above");
             progress = stepper.accept(&progress, &attempt, report.newton_iterations());
             let inverted = self.model.mesh.count_inverted(&self.state.positions);
@@ -233,7 +236,19 @@ impl<'s> Run<'s> {
             increment: attempt.increment,
             ..StepReport::default()
         };
-        let result = self.solve(&mut x, &mut p, &target, &mut report);
+        // The meshed obstacles move to the attempt's level; a crossing fails the attempt.
+        let placed = self
+            .system
+            .model
+            .surface_contact
+            .as_ref()
+            .map_or(Ok(()), |c| {
+                c.begin_attempt(&state.positions, &attempt.level)
+            });
+        let result = match placed {
+            Ok(()) => self.solve(&mut x, &mut p, &target, &mut report),
+            Err(e) => Err(e),
+        };
         if let Some(contact) = &self.system.model.contact {
             report.contact = contact.summary(&x);
         }
