@@ -148,4 +148,4 @@ pub use simulation::{
 };
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
 pub use sprs;
-pub use terms::{ContactSummary, SurfaceContactSpec};
+pub use terms::{ContactSummary, SurfaceContactSpec, SurfaceContactSummary};

@@ -726,7 +726,12 @@ fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(
         .iter()
         .fold((nodes[0], nodes[0]), |(lo, hi), x| (lo.inf(x), hi.sup(x)));
     let depth = tolerance * (hi - lo).norm();
-    for (i, (obstacle, spec)) in problem.obstacles.iter().zip(&scene.obstacles).enumerate() {
+    let analytic = scene
+        .obstacles
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| !o.is_mesh());
+    for (obstacle, (i, spec)) in problem.obstacles.iter().zip(analytic) {
         let (inside, deepest) = nodes
             .iter()
             .map(|x| obstacle.distance(x, 0.0).0)
@@ -738,6 +743,7 @@ fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(
                 ObstacleSpec::Sphere { .. } => "sphere",
                 ObstacleSpec::Cylinder { .. } => "cylinder",
                 ObstacleSpec::Ring { .. } => "ring",
+                ObstacleSpec::Mesh { .. } => "meshed",
             };
             return Err(SceneError::Invalid {
                 origin: format!("scene {}", scene.name),

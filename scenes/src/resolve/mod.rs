@@ -19,10 +19,10 @@ pub use mesh::{build_mesh, mesh_with_groups, read_mesh_file, SceneMesh};
 pub use selections::Selections;
 
 use crate::error::SceneError;
-use crate::format::{limits, validate, Scene};
+use crate::format::{limits, validate, ContactSpec, Scene};
 use isochor_mesh::element::Part;
 use isochor_mesh::Zones;
-use isochor_solvers::{Method, Problem, Settings, Stepping, SurfaceContactSpec};
+use isochor_solvers::{MeshObstacle, Method, Problem, Settings, Stepping, SurfaceContactSpec};
 
 /// The default reach of the contact barrier, relative to the rest mesh's bounding-box
 /// diagonal (IPC's default, Li et al. 2020).
@@ -45,6 +45,8 @@ pub struct ResolvedScene {
     pub bodies: SceneBodies,
     /// Barrier contact between surfaces, if the scene has `[contact]`.
     pub surface_contact: Option<SurfaceContactSpec>,
+    /// The meshed obstacles (in barrier contact: `surface_contact` is then on).
+    pub mesh_obstacles: Vec<MeshObstacle>,
     /// What a user should know about how the meshes were taken (the run's warnings).
     pub notices: Vec<String>,
 }
@@ -63,6 +65,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
     let dirichlet = problem::dirichlet(scene, &selections)?;
     let loads = problem::loads(scene, &selections)?;
     let obstacles = problem::obstacles(scene)?;
+    let mesh_obstacles = problem::mesh_obstacles(scene)?;
     let method = scene.method();
     let zones = if zones::needed(scene) {
         Some(zones::zones(
@@ -79,7 +82,18 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         ..problem::settings(&scene.solver)
     };
     let stepping = problem::stepping(&scene.stepping);
-    let surface_contact = scene.contact.as_ref().map(|c| {
+    // A meshed obstacle turns barrier contact on, with the `[contact]` defaults (those of
+    // an empty table).
+    let defaults: ContactSpec = toml::from_str("").map_err(|e| SceneError::Invalid {
+        origin: format!("scene {}", scene.name),
+        key: "contact".into(),
+        message: format!("the defaults of [contact]: {e}"),
+    })?;
+    let contact = scene
+        .contact
+        .as_ref()
+        .or((!mesh_obstacles.is_empty()).then_some(&defaults));
+    let surface_contact = contact.map(|c| {
         let (lo, hi) = mesh.mesh.corners().bounding_box();
         SurfaceContactSpec {
             dhat: c.dhat.unwrap_or(DEFAULT_DHAT * (hi - lo).norm()),
@@ -113,6 +127,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         zones,
         bodies,
         surface_contact,
+        mesh_obstacles,
         notices,
     })
 }

@@ -20,7 +20,7 @@ pub use epidermis::EpidermisTerm;
 pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
-pub use surface_contact::{SurfaceContact, SurfaceContactSpec};
+pub use surface_contact::{SurfaceContact, SurfaceContactSpec, SurfaceContactSummary};
 
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;

@@ -42,6 +42,17 @@ pub struct SurfaceContactSpec {
     pub node_bodies: Vec<usize>,
 }
 
+/// What the surface contact is at a state, for outputs.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SurfaceContactSummary {
+    /// The pairs of primitives closer than `dhat`.
+    pub pairs_within_dhat: usize,
+    /// The smallest distance between two primitives (`+inf` when none is within `dhat`).
+    pub min_distance: f64,
+    /// The force each meshed obstacle exerts on the bodies, in order.
+    pub obstacle_forces: Vec<Vec3>,
+}
+
 /// The pairs of the current pattern, the stiffness, and how often the pattern changed.
 #[derive(Debug, Clone, Default)]
 struct Active {
@@ -260,6 +271,16 @@ impl SurfaceContact {
     pub fn min_distance(&self, x: &[Vec3]) -> f64 {
         let x = self.rigid.extend(x);
         BarrierPotential::min_distance(&self.surface, &self.candidates(&x), &self.rest, &x)
+    }
+
+    /// The pairs within `dhat`, the smallest distance and the meshed obstacles' forces at
+    /// body positions `x`.
+    pub fn summary(&self, x: &[Vec3]) -> SurfaceContactSummary {
+        SurfaceContactSummary {
+            pairs_within_dhat: self.pairs_within_dhat(x),
+            min_distance: self.min_distance(x),
+            obstacle_forces: self.obstacle_forces(x),
+        }
     }
 
     /// The number of pairs closer than `dhat` at body positions `x`.

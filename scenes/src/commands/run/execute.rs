@@ -30,6 +30,7 @@ pub(super) fn execute(
         zones,
         bodies,
         surface_contact,
+        mesh_obstacles,
         notices,
     } = resolve::build(scene)?;
     let mut body = Body::new(&problem, selections, zones);
@@ -46,6 +47,9 @@ pub(super) fn execute(
     }
     if let Some(spec) = surface_contact {
         sim.set_surface_contact(spec)?;
+    }
+    if !mesh_obstacles.is_empty() {
+        sim.set_mesh_obstacles(mesh_obstacles)?;
     }
     // Only a run that has got this far replaces what an earlier run left.
     if let Some(dir) = out.as_mut() {
