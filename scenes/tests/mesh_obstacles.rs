@@ -157,3 +157,44 @@ fn a_plate_through_the_block_at_the_start_is_refused() {
         .to_string();
     assert!(e.contains("obstacle0") && e.contains("intersects"), "{e}");
 }
+
+#[test]
+fn a_scene_file_runs_with_its_plate_and_writes_the_contact_columns() {
+    let dir = scratch("mesh-obstacle-cli");
+    plate_file(&dir);
+    let obstacle = format!(
+        "[contact]\ndhat = {DHAT}\n\n[[obstacles]]\nshape = \"mesh\"\nname = \"plate\"\npath = \"plate.obj\"\n\n[probes.gap]\nkind = \"min-distance\""
+    );
+    let text = toml::to_string(&block(1e-3, 2e-4, &obstacle)).unwrap();
+    let scene = dir.join("block.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("out");
+    let o = crate::common::isochor(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let steps = std::fs::read_to_string(out.join("steps.csv")).unwrap();
+    let header: Vec<&str> = steps.lines().next().unwrap().split(',').collect();
+    let last: Vec<&str> = steps.lines().last().unwrap().split(',').collect();
+    let column = |name: &str| -> f64 {
+        let i = header
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("{name}"));
+        last[i].parse().unwrap()
+    };
+    assert!(column("contact_pairs") > 0.0);
+    // The plate carries the whole load: its force is the total, pointing up.
+    let (plate, total) = (column("contact_force_plate_z"), column("contact_force_z"));
+    assert!(
+        plate > 0.0 && plate == total,
+        "plate {plate}, total {total}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let gap = summary["probes"]["gap"].as_f64().unwrap();
+    assert!(gap > 0.0 && gap < DHAT, "min-distance {gap}");
+}

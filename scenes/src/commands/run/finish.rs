@@ -2,6 +2,7 @@
 //! and the outputs committed.
 
 use super::body::{Body, ProbedState};
+use super::observer::meshed_obstacles;
 use super::observer::Observer;
 use super::options::RunOptions;
 use super::records::record;
@@ -144,6 +145,8 @@ impl Run<'_> {
                 report,
                 inverted,
                 observer.last_energies,
+                None,
+                &meshed_obstacles(scene),
             )
         });
         let constraint_residual = ending.reports.last().map_or(0.0, |r| r.constraint_residual);
@@ -195,6 +198,12 @@ impl Run<'_> {
             history,
             failed,
             dynamic: scene.is_dynamic(),
+            obstacles: scene
+                .obstacles
+                .iter()
+                .enumerate()
+                .map(|(i, o)| o.name(i))
+                .collect(),
         })
     }
 }

@@ -45,6 +45,11 @@ pub(super) struct Observer<'a> {
     bar: ProgressBar,
 }
 
+/// Whether each obstacle of `scene` is meshed, in its order.
+pub(super) fn meshed_obstacles(scene: &Scene) -> Vec<bool> {
+    scene.obstacles.iter().map(|o| o.is_mesh()).collect()
+}
+
 impl<'a> Observer<'a> {
     /// An observer of a run of `scene` from its first step.
     pub fn new(
@@ -95,6 +100,8 @@ impl<'a> Observer<'a> {
             frame.report,
             frame.inverted_tets,
             frame.energies,
+            frame.surface_contact.as_ref(),
+            &meshed_obstacles(self.scene),
         );
         step.cuts = frame.cuts.iter().map(cut_record).collect();
         step.tracked_probe = self.tracked_probe(frame);
