@@ -12,6 +12,7 @@ mod elements;
 mod energies;
 mod extremes;
 mod locking;
+mod mesh_obstacle_term;
 mod newton;
 mod orderings;
 mod quadratic;
