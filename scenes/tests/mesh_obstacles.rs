@@ -1,7 +1,8 @@
 //! Meshed rigid obstacles (`[[obstacles]] shape = "mesh"`): a plate given as an OBJ square of
 //! two triangles holds a pressed block where the analytic half-space holds it (to within the
 //! barrier's reach), and a plate moving into a block never leaves an intersection between
-//! the block's surface and the plate's triangles on any accepted state.
+//! the block's surface and the plate's triangles on any accepted state; a scene file's run
+//! writes the contact columns, the `min-distance` probe and the plate's surface per frame.
 
 use crate::common::scratch;
 use isochor_mesh::contact::{intersecting_triangles, ContactSurface};
@@ -197,4 +198,9 @@ fn a_scene_file_runs_with_its_plate_and_writes_the_contact_columns() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let gap = summary["probes"]["gap"].as_f64().unwrap();
     assert!(gap > 0.0 && gap < DHAT, "min-distance {gap}");
+    // The plate's surface beside every frame, as part 1 of the frame's time.
+    let pvd = std::fs::read_to_string(out.join("frame.pvd")).unwrap();
+    assert!(pvd.contains(r#"part="1" file="frame_00000_plate.vtp""#), "{pvd}");
+    let rest = std::fs::read_to_string(out.join("frame_00000_plate.vtp")).unwrap();
+    assert!(rest.contains(r#"NumberOfPoints="4" NumberOfPolys="2""#), "{rest}");
 }

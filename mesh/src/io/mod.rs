@@ -20,14 +20,16 @@ mod surface;
 mod tetgen;
 mod text;
 mod vtk_binary;
+mod vtp;
 mod vtu;
 
 pub use crate::groups::{PhysicalGroup, PhysicalGroups};
 pub use gmsh::{read_gmsh, read_gmsh_elements, read_gmsh_with_groups};
-pub use pvd::write_pvd;
+pub use pvd::{write_pvd, write_pvd_parts};
 pub use surface::{read_gmsh_surface, read_obj, read_stl, read_surface, TriangleSurface};
 pub use tetgen::{read_tetgen, read_tetgen_with_regions};
 pub use text::excerpt;
+pub use vtp::write_vtp_triangles;
 pub use vtu::{
     read_vtu, read_vtu_elements, read_vtu_file, write_vtu, write_vtu_elements, Field, FieldValues,
     VtuEncoding, VtuFile,

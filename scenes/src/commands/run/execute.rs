@@ -12,6 +12,7 @@ use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::RunResult;
 use crate::resolve::{self, ResolvedScene};
+use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, Simulation};
 use std::path::{Path, PathBuf};
 
@@ -48,6 +49,12 @@ pub(super) fn execute(
     if let Some(spec) = surface_contact {
         sim.set_surface_contact(spec)?;
     }
+    let obstacle_surfaces: Vec<(String, Vec<[usize; 3]>)> = mesh_obstacles
+        .iter()
+        .map(|o| (o.name.clone(), o.triangles.clone()))
+        .collect();
+    let obstacle_starts: Vec<Vec<Vec3>> =
+        mesh_obstacles.iter().map(|o| o.vertices.clone()).collect();
     if !mesh_obstacles.is_empty() {
         sim.set_mesh_obstacles(mesh_obstacles)?;
     }
@@ -56,7 +63,16 @@ pub(super) fn execute(
         dir.start()?;
     }
     let body_ids = (bodies.parts.len() > 1).then(|| bodies.element_bodies());
-    let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids, body_ids)?;
+    let obstacles = (obstacle_surfaces, obstacle_starts);
+    let frames = frame_writer(
+        scene,
+        out.as_ref(),
+        &sim,
+        &body,
+        zone_ids,
+        body_ids,
+        obstacles,
+    )?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {
         let solver: Checkpoint = (&checkpoint.solver).into();
@@ -93,7 +109,8 @@ fn check_probes_at_rest(scene: &Scene, body: &Body) -> Result<(), SceneError> {
     Ok(())
 }
 
-/// The frame writer of a run into `out` that writes VTU frames, its rest frame written.
+/// The frame writer of a run into `out` that writes VTU frames (and the meshed obstacles'
+/// surfaces: names and triangles, vertices at the start), its rest frame written.
 fn frame_writer(
     scene: &Scene,
     out: Option<&OutputDir>,
@@ -101,6 +118,7 @@ fn frame_writer(
     body: &Body,
     zone_ids: Option<Vec<i32>>,
     body_ids: Option<Vec<i32>>,
+    (obstacles, starts): (Vec<(String, Vec<[usize; 3]>)>, Vec<Vec<Vec3>>),
 ) -> Result<Option<FrameWriter>, SceneError> {
     let (Some(dir), true) = (out, scene.output.vtu) else {
         return Ok(None);
@@ -121,7 +139,12 @@ fn frame_writer(
         region_ids,
     )
     .with_bodies(body_ids)
-    .with_deformed_points(scene.output.points == PointsName::Deformed);
-    w.write(mesh, 0, 0.0, &FrameFields::rest(mesh))?;
+    .with_deformed_points(scene.output.points == PointsName::Deformed)
+    .with_obstacles(obstacles);
+    let rest = FrameFields {
+        obstacle_positions: &starts,
+        ..FrameFields::rest(mesh)
+    };
+    w.write(mesh, 0, 0.0, &rest)?;
     Ok(Some(w))
 }

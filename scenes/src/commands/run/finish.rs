@@ -253,6 +253,7 @@ fn preview(
             stress: &observer.last_stress,
             nodal_pressures: &[],
             contact_forces: &[],
+            obstacle_positions: &[],
         },
         &PreviewOptions {
             field: scene.output.preview_field,

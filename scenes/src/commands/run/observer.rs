@@ -169,6 +169,7 @@ impl<'a> Observer<'a> {
             stress: &frame.stress,
             nodal_pressures: frame.nodal_pressures.as_deref().unwrap_or_default(),
             contact_forces: &frame.contact_forces,
+            obstacle_positions: &frame.mesh_obstacles,
         };
         w.write(&self.body.mesh, index, frame.state.t, &fields)
     }
