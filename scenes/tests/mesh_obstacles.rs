@@ -200,7 +200,13 @@ fn a_scene_file_runs_with_its_plate_and_writes_the_contact_columns() {
     assert!(gap > 0.0 && gap < DHAT, "min-distance {gap}");
     // The plate's surface beside every frame, as part 1 of the frame's time.
     let pvd = std::fs::read_to_string(out.join("frame.pvd")).unwrap();
-    assert!(pvd.contains(r#"part="1" file="frame_00000_plate.vtp""#), "{pvd}");
+    assert!(
+        pvd.contains(r#"part="1" file="frame_00000_plate.vtp""#),
+        "{pvd}"
+    );
     let rest = std::fs::read_to_string(out.join("frame_00000_plate.vtp")).unwrap();
-    assert!(rest.contains(r#"NumberOfPoints="4" NumberOfPolys="2""#), "{rest}");
+    assert!(
+        rest.contains(r#"NumberOfPoints="4" NumberOfPolys="2""#),
+        "{rest}"
+    );
 }

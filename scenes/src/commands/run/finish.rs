@@ -7,13 +7,16 @@ use super::observer::Observer;
 use super::options::RunOptions;
 use super::records::record;
 use crate::error::SceneError;
-use crate::format::{validate, Scene};
+use crate::format::{validate, Scene, SteppingSpec};
 use crate::output::{
-    run_title, write_preview, write_run_outputs, FrameFields, OutputDir, PreviewOptions,
+    obstacle_triangles, run_title, write_preview, write_run_outputs, FrameFields, OutputDir,
+    PreviewOptions,
 };
 use crate::probes;
 use crate::record::{RunResult, StepRecord};
-use isochor_solvers::{RunSummary, SimulationFailure, State, StepReport};
+use crate::resolve::problem;
+use isochor_mesh::{ElementMesh, Vec3};
+use isochor_solvers::{LoadLevel, RunSummary, SimulationFailure, State, StepReport};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -260,6 +263,33 @@ fn preview(
             rest_outline: scene.output.preview_rest,
             gravity: scene.loads.gravity,
             title: &run_title(result),
+            obstacles: &obstacles_at(scene, &body.mesh, observer, state)?,
         },
     )
+}
+
+/// The triangles of every obstacle where it stands at `state`, for the preview: the
+/// analytic shapes tessellated around the rest mesh, the meshed ones as the last accepted
+/// step placed them.
+fn obstacles_at(
+    scene: &Scene,
+    mesh: &ElementMesh,
+    observer: &Observer<'_>,
+    state: &State,
+) -> Result<Vec<[Vec3; 3]>, SceneError> {
+    let level = match scene.stepping {
+        SteppingSpec::Dynamic { dt, frames, .. } => LoadLevel::dynamic(state.t, dt * frames as f64),
+        _ => LoadLevel::quasi_static(state.t),
+    };
+    let around = mesh.corners().bounding_box();
+    let mut triangles = Vec::new();
+    for o in &problem::obstacles(scene)? {
+        let s = level.motion_parameter(o.curve.as_ref());
+        triangles.extend(obstacle_triangles(o, s, around));
+    }
+    for (k, o) in problem::mesh_obstacles(scene)?.iter().enumerate() {
+        let placed = observer.last_obstacles.get(k).unwrap_or(&o.vertices);
+        triangles.extend(o.triangles.iter().map(|t| t.map(|v| placed[v])));
+    }
+    Ok(triangles)
 }

@@ -11,6 +11,7 @@ use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::StepRecord;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, Energies, Frame};
 use nalgebra::Matrix3;
 use std::io::IsTerminal;
@@ -34,6 +35,8 @@ pub(super) struct Observer<'a> {
     pub last_von_mises: Vec<f64>,
     /// Energies of the last accepted state.
     pub last_energies: Energies,
+    /// Where the meshed obstacles' vertices stood at the last accepted state.
+    pub last_obstacles: Vec<Vec<Vec3>>,
     /// The solver's checkpoint of the last accepted state (with `--checkpoint-every`).
     pub last_solver: Option<Checkpoint>,
     /// Wall time of the run before it was resumed.
@@ -70,6 +73,7 @@ impl<'a> Observer<'a> {
             last_stress: Vec::new(),
             last_von_mises: Vec::new(),
             last_energies: Energies::default(),
+            last_obstacles: Vec::new(),
             last_solver: None,
             earlier_wall_time: 0.0,
             error: None,
@@ -110,6 +114,7 @@ impl<'a> Observer<'a> {
         self.last_stress.clone_from(&frame.stress);
         self.last_von_mises.clone_from(&frame.von_mises);
         self.last_energies = frame.energies;
+        self.last_obstacles.clone_from(&frame.mesh_obstacles);
         if self.error.is_none() {
             if let Err(e) = self
                 .write_frame(frame)
