@@ -96,6 +96,10 @@ pub struct ContactRecord {
     /// none is that close or barrier contact is off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_distance: Option<f64>,
+    /// For each pair of bodies `(a, b)`, `a < b` in the scene's order, the force body `b`
+    /// exerts on body `a` through barrier contact (N; empty with one body or without it).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub body_pair_forces: Vec<[f64; 3]>,
 }
 
 /// The summary of a run.
@@ -164,6 +168,10 @@ pub struct RunResult {
     /// `steps.csv` (`obstacle<i>` unless a meshed obstacle is named).
     #[serde(skip)]
     pub obstacles: Vec<String>,
+    /// The pairs of bodies `a_b` (`a` before `b` in the scene's order), for the per-pair
+    /// columns of `steps.csv` (empty with one body).
+    #[serde(skip)]
+    pub body_pairs: Vec<String>,
 }
 
 impl StepRecord {

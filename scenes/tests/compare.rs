@@ -44,6 +44,7 @@ fn result(method: &str, probes: &[(&str, f64)], converged: bool) -> RunResult {
         failed: None,
         dynamic: false,
         obstacles: Vec::new(),
+        body_pairs: Vec::new(),
     }
 }
 

@@ -59,6 +59,7 @@ fn run_on(method: Method, element: TetElement, res: f64, value: f64, wall_time_s
         failed: None,
         dynamic: false,
         obstacles: Vec::new(),
+        body_pairs: Vec::new(),
     };
     StudyRun {
         method: method.name().into(),

@@ -153,3 +153,55 @@ fn a_plate_moving_through_the_cube_in_one_step_is_refused() {
         .to_string();
     assert!(e.contains("plate") && e.contains("cross"), "{e}");
 }
+
+/// Two unit cubes 1 mm apart: the force the upper exerts on the lower is minus the barrier's
+/// gradient over the lower cube's nodes, and pushes it down.
+#[test]
+fn the_force_between_two_bodies_is_minus_the_gradient_on_one() {
+    let lower = box_grid(Vec3::zeros(), Vec3::repeat(1.0), [1, 1, 1]).unwrap();
+    let upper = box_grid(
+        Vec3::new(0.0, 0.0, 1.001),
+        Vec3::new(1.0, 1.0, 2.001),
+        [1, 1, 1],
+    )
+    .unwrap();
+    let offset = lower.positions().len();
+    let mut rest = lower.positions().to_vec();
+    rest.extend(upper.positions());
+    let mut triangles = ContactSurface::from_boundary(&lower.boundary().unwrap())
+        .triangles()
+        .to_vec();
+    triangles.extend(
+        ContactSurface::from_boundary(&upper.boundary().unwrap())
+            .triangles()
+            .iter()
+            .map(|t| t.map(|v| v + offset)),
+    );
+    let bodies: Vec<usize> = (0..rest.len()).map(|v| usize::from(v >= offset)).collect();
+    let spec = SurfaceContactSpec {
+        dhat: DHAT,
+        self_contact: false,
+        node_bodies: bodies,
+    };
+    let term = SurfaceContact::new(
+        spec,
+        ContactSurface::from_triangles(triangles),
+        rest.clone(),
+        1e5,
+    )
+    .unwrap();
+    let mut gradient = vec![0.0; 3 * rest.len()];
+    term.evaluate(&rest, &LoadLevel::FULL, Some(&mut gradient), None)
+        .unwrap();
+    let on_lower: Vec3 = (0..offset)
+        .map(|v| -Vec3::new(gradient[3 * v], gradient[3 * v + 1], gradient[3 * v + 2]))
+        .sum();
+    let forces = term.body_pair_forces(&rest);
+    assert_eq!(forces.len(), 1);
+    assert!(
+        (forces[0] - on_lower).norm() <= 1e-12 * on_lower.norm(),
+        "{} against {on_lower}",
+        forces[0]
+    );
+    assert!(forces[0].z < 0.0 && forces[0].xy().norm() <= 1e-9 * forces[0].z.abs());
+}

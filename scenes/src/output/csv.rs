@@ -63,17 +63,19 @@ fn volume_error(errors: &[f64], i: usize) -> String {
 }
 
 /// `steps.csv`: one row per accepted step or frame; after the fixed columns, the barrier's
-/// `contact_pairs` and, per obstacle of `obstacles` (their names, in the scene's order), the
-/// force it exerts on the bodies as `contact_force_<name>_x,_y,_z`.
+/// `contact_pairs`, per obstacle of `obstacles` (their names, in the scene's order) the force
+/// it exerts on the bodies as `contact_force_<name>_x,_y,_z`, and per pair of bodies `a_b`
+/// of `body_pairs` the force body `b` exerts on body `a` as `contact_force_a_b_x,_y,_z`.
 pub fn write_steps_csv(
     path: &Path,
     history: &[StepRecord],
     obstacles: &[String],
+    body_pairs: &[String],
 ) -> Result<(), SceneError> {
     let mut out = String::from(
         "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts,contact_pairs",
     );
-    for name in obstacles {
+    for name in obstacles.iter().chain(body_pairs) {
         for axis in ["x", "y", "z"] {
             let _ = write!(out, ",contact_force_{name}_{axis}");
         }

@@ -49,7 +49,12 @@ pub fn write_run_outputs(
         .cloned()
         .collect();
     write_iterations_csv(&dir.join("iterations.csv"), &attempted)?;
-    write_steps_csv(&dir.join("steps.csv"), &result.history, &result.obstacles)?;
+    write_steps_csv(
+        &dir.join("steps.csv"),
+        &result.history,
+        &result.obstacles,
+        &result.body_pairs,
+    )?;
     if plots {
         let title = run_title(result);
         plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;

@@ -51,6 +51,9 @@ pub struct SurfaceContactSummary {
     pub min_distance: f64,
     /// The force each meshed obstacle exerts on the bodies, in order.
     pub obstacle_forces: Vec<Vec3>,
+    /// For each pair of bodies `(a, b)`, `a < b`, in the order `(0, 1), (0, 2), ..., (1, 2),
+    /// ...`: the force body `b` exerts on body `a` (empty with one body).
+    pub body_pair_forces: Vec<Vec3>,
 }
 
 /// The pairs of the current pattern, the stiffness, and how often the pattern changed.
@@ -280,7 +283,67 @@ impl SurfaceContact {
             pairs_within_dhat: self.pairs_within_dhat(x),
             min_distance: self.min_distance(x),
             obstacle_forces: self.obstacle_forces(x),
+            body_pair_forces: self.body_pair_forces(x),
         }
+    }
+
+    /// The number of bodies (their nodes numbered `0..`, the obstacles' after them).
+    fn num_bodies(&self) -> usize {
+        self.spec.node_bodies[..self.rigid.num_nodes()]
+            .iter()
+            .max()
+            .map_or(0, |b| b + 1)
+    }
+
+    /// For each pair of bodies `(a, b)`, `a < b` (in the order of
+    /// [`SurfaceContactSummary::body_pair_forces`]), the force `b` exerts on `a` at body
+    /// positions `x`: minus the gradient of the pairs between them, summed over `a`'s nodes.
+    pub fn body_pair_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
+        let bodies = self.num_bodies();
+        if bodies < 2 {
+            return Vec::new();
+        }
+        let full = self.rigid.extend(x);
+        let all = self.candidates(&full);
+        let n = self.rigid.num_nodes();
+        let body = |v: usize| self.spec.node_bodies[v];
+        // The index of pair (a, b), a < b, in row-major upper-triangle order.
+        let index = |a: usize, b: usize| a * (2 * bodies - a - 1) / 2 + (b - a - 1);
+        let mut between = vec![Candidates::default(); bodies * (bodies - 1) / 2];
+        let (tris, edges) = (self.surface.triangles(), self.surface.edges());
+        for &[p, t] in &all.point_triangle {
+            let (a, b) = (body(p), body(tris[t][0]));
+            if p < n && tris[t][0] < n && a != b {
+                between[index(a.min(b), a.max(b))]
+                    .point_triangle
+                    .push([p, t]);
+            }
+        }
+        for &[i, j] in &all.edge_edge {
+            let (a, b) = (body(edges[i][0]), body(edges[j][0]));
+            if edges[i][0] < n && edges[j][0] < n && a != b {
+                between[index(a.min(b), a.max(b))].edge_edge.push([i, j]);
+            }
+        }
+        let potential = self.potential();
+        let mut pairs = Vec::with_capacity(between.len());
+        for a in 0..bodies {
+            for b in a + 1..bodies {
+                let candidates = &between[index(a, b)];
+                if candidates.is_empty() {
+                    pairs.push(Vec3::zeros());
+                    continue;
+                }
+                let mut g = vec![0.0; 3 * full.len()];
+                potential.add_gradient(&self.surface, candidates, &self.rest, &full, &mut g);
+                let on_a: Vec3 = (0..n)
+                    .filter(|&v| body(v) == a)
+                    .map(|v| -Vec3::new(g[3 * v], g[3 * v + 1], g[3 * v + 2]))
+                    .sum();
+                pairs.push(on_a);
+            }
+        }
+        pairs
     }
 
     /// The number of pairs closer than `dhat` at body positions `x`.

@@ -207,6 +207,7 @@ impl Run<'_> {
                 .enumerate()
                 .map(|(i, o)| o.name(i))
                 .collect(),
+            body_pairs: body_pairs(scene),
         })
     }
 }
@@ -230,6 +231,20 @@ fn warnings(scene: &Scene, history: &[StepRecord], notices: &[String]) -> Vec<St
         }
     }
     warnings
+}
+
+/// The pairs of bodies of `scene` as `a_b`, `a` before `b` in its order (none with one body).
+fn body_pairs(scene: &Scene) -> Vec<String> {
+    let bodies = scene.bodies();
+    let names: Vec<&str> = bodies.iter().map(|b| b.name).collect();
+    if names.len() < 2 {
+        return Vec::new();
+    }
+    names
+        .iter()
+        .enumerate()
+        .flat_map(|(i, a)| names[i + 1..].iter().map(move |b| format!("{a}_{b}")))
+        .collect()
 }
 
 /// Every probe of `scene` as NaN.

@@ -70,6 +70,9 @@ fn contact_record(
         iterations: report.contact_iterations,
         pairs: surface.map_or(0, |s| s.pairs_within_dhat),
         min_distance: surface.map(|s| s.min_distance).filter(|d| d.is_finite()),
+        body_pair_forces: surface.map_or_else(Vec::new, |s| {
+            s.body_pair_forces.iter().map(|&f| f.into()).collect()
+        }),
     }
 }
 
