@@ -13,7 +13,7 @@ use crate::probes;
 use crate::record::RunResult;
 use crate::resolve::{self, ResolvedScene};
 use isochor_mesh::Vec3;
-use isochor_solvers::{Checkpoint, Simulation};
+use isochor_solvers::{Checkpoint, MeshObstacle, Simulation};
 use std::path::{Path, PathBuf};
 
 /// Runs `scene` into `out`, from the start or from `resume`.
@@ -49,12 +49,7 @@ pub(super) fn execute(
     if let Some(spec) = surface_contact {
         sim.set_surface_contact(spec)?;
     }
-    let obstacle_surfaces: Vec<(String, Vec<[usize; 3]>)> = mesh_obstacles
-        .iter()
-        .map(|o| (o.name.clone(), o.triangles.clone()))
-        .collect();
-    let obstacle_starts: Vec<Vec<Vec3>> =
-        mesh_obstacles.iter().map(|o| o.vertices.clone()).collect();
+    let obstacle_surfaces = mesh_obstacles.clone();
     if !mesh_obstacles.is_empty() {
         sim.set_mesh_obstacles(mesh_obstacles)?;
     }
@@ -63,7 +58,6 @@ pub(super) fn execute(
         dir.start()?;
     }
     let body_ids = (bodies.parts.len() > 1).then(|| bodies.element_bodies());
-    let obstacles = (obstacle_surfaces, obstacle_starts);
     let frames = frame_writer(
         scene,
         out.as_ref(),
@@ -71,7 +65,7 @@ pub(super) fn execute(
         &body,
         zone_ids,
         body_ids,
-        obstacles,
+        &obstacle_surfaces,
     )?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {
@@ -109,8 +103,8 @@ fn check_probes_at_rest(scene: &Scene, body: &Body) -> Result<(), SceneError> {
     Ok(())
 }
 
-/// The frame writer of a run into `out` that writes VTU frames (and the meshed obstacles'
-/// surfaces: names and triangles, vertices at the start), its rest frame written.
+/// The frame writer of a run into `out` that writes VTU frames (and the surfaces of the
+/// meshed `obstacles`), its rest frame written.
 fn frame_writer(
     scene: &Scene,
     out: Option<&OutputDir>,
@@ -118,7 +112,7 @@ fn frame_writer(
     body: &Body,
     zone_ids: Option<Vec<i32>>,
     body_ids: Option<Vec<i32>>,
-    (obstacles, starts): (Vec<(String, Vec<[usize; 3]>)>, Vec<Vec<Vec3>>),
+    obstacles: &[MeshObstacle],
 ) -> Result<Option<FrameWriter>, SceneError> {
     let (Some(dir), true) = (out, scene.output.vtu) else {
         return Ok(None);
@@ -140,7 +134,13 @@ fn frame_writer(
     )
     .with_bodies(body_ids)
     .with_deformed_points(scene.output.points == PointsName::Deformed)
-    .with_obstacles(obstacles);
+    .with_obstacles(
+        obstacles
+            .iter()
+            .map(|o| (o.name.clone(), o.triangles.clone()))
+            .collect(),
+    );
+    let starts: Vec<Vec<Vec3>> = obstacles.iter().map(|o| o.vertices.clone()).collect();
     let rest = FrameFields {
         obstacle_positions: &starts,
         ..FrameFields::rest(mesh)
