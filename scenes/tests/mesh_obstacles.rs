@@ -210,3 +210,27 @@ fn a_scene_file_runs_with_its_plate_and_writes_the_contact_columns() {
         "{rest}"
     );
 }
+
+#[test]
+fn obstacle_names_are_plain_and_unique() {
+    let with = |names: [&str; 2]| {
+        let obstacles: String = names
+            .iter()
+            .map(|n| {
+                format!("[[obstacles]]\nshape = \"mesh\"\npath = \"plate.obj\"\nname = \"{n}\"\n\n")
+            })
+            .collect();
+        let text = toml::to_string(&block(0.0, 2e-4, "")).unwrap() + &obstacles;
+        Scene::from_toml_str(&text, "block")
+            .map(|_| ())
+            .unwrap_err()
+            .to_string()
+    };
+    let e = with(["a,b", "c"]);
+    assert!(e.contains("obstacles.0.name") && e.contains("a,b"), "{e}");
+    let e = with(["plate", "plate"]);
+    assert!(
+        e.contains("obstacles.1.name") && e.contains("earlier"),
+        "{e}"
+    );
+}
