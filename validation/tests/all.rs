@@ -20,5 +20,6 @@ mod reference;
 mod stepping;
 mod stresses;
 mod surface_contact_term;
+mod surface_readers;
 mod terms;
 mod volume;
