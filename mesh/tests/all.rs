@@ -5,3 +5,4 @@
 mod element;
 mod generators;
 mod io;
+mod surface;

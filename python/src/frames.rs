@@ -71,6 +71,7 @@ impl Frame {
             stress: &self.data.stress,
             nodal_pressures: &[],
             contact_forces: &[],
+            obstacle_positions: &[],
         }
     }
 }

@@ -180,6 +180,12 @@ fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
             };
             force.map_or(0.0, |[x, y, z]| (x * x + y * y + z * z).sqrt())
         }),
+        ProbeSpec::MinDistance => input
+            .history
+            .iter()
+            .filter_map(|s| s.contact.min_distance)
+            .reduce(f64::min)
+            .unwrap_or(f64::NAN),
         ProbeSpec::FirstContact => input
             .history
             .iter()

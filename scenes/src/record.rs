@@ -77,7 +77,7 @@ pub struct CutRecord {
 /// The contact of one accepted step.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactRecord {
-    /// Total normal force the obstacles exert on the body (N).
+    /// Total normal force the obstacles (analytic and meshed) exert on the bodies (N).
     pub force: [f64; 3],
     /// The same per obstacle, in the scene's order (N).
     #[serde(default)]
@@ -88,6 +88,18 @@ pub struct ContactRecord {
     pub max_penetration: f64,
     /// Multiplier updates of the step.
     pub iterations: usize,
+    /// Pairs of surface primitives (bodies and meshed obstacles) closer than the barrier's
+    /// `dhat` (0 without barrier contact).
+    #[serde(default)]
+    pub pairs: usize,
+    /// The smallest distance between two surface primitives within `dhat` (m; `None` when
+    /// none is that close or barrier contact is off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_distance: Option<f64>,
+    /// For each pair of bodies `(a, b)`, `a < b` in the scene's order, the force body `b`
+    /// exerts on body `a` through barrier contact (N; empty with one body or without it).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub body_pair_forces: Vec<[f64; 3]>,
 }
 
 /// The summary of a run.
@@ -152,6 +164,14 @@ pub struct RunResult {
     /// Whether the scene is dynamic.
     #[serde(skip)]
     pub dynamic: bool,
+    /// The obstacles' names in the scene's order, for the per-obstacle columns of
+    /// `steps.csv` (`obstacle<i>` unless a meshed obstacle is named).
+    #[serde(skip)]
+    pub obstacles: Vec<String>,
+    /// The pairs of bodies `a_b` (`a` before `b` in the scene's order), for the per-pair
+    /// columns of `steps.csv` (empty with one body).
+    #[serde(skip)]
+    pub body_pairs: Vec<String>,
 }
 
 impl StepRecord {

@@ -12,6 +12,7 @@ mod common;
 mod compare;
 mod contact;
 mod frames;
+mod mesh_obstacles;
 mod outputs;
 mod overrides;
 mod physical;

@@ -43,6 +43,8 @@ fn result(method: &str, probes: &[(&str, f64)], converged: bool) -> RunResult {
         history: Vec::new(),
         failed: None,
         dynamic: false,
+        obstacles: Vec::new(),
+        body_pairs: Vec::new(),
     }
 }
 

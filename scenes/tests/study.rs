@@ -58,6 +58,8 @@ fn run_on(method: Method, element: TetElement, res: f64, value: f64, wall_time_s
         history: Vec::new(),
         failed: None,
         dynamic: false,
+        obstacles: Vec::new(),
+        body_pairs: Vec::new(),
     };
     StudyRun {
         method: method.name().into(),

@@ -93,6 +93,15 @@ pub enum SolverError {
         /// The last attempt's error.
         error: Box<SolverError>,
     },
+    /// A meshed obstacle's motion over a step would cross a body's surface (the barrier
+    /// cannot stop a motion that is prescribed): the step is cut.
+    #[error("meshed obstacle '{obstacle}' would cross a body's surface moving to load parameter or time {t}: the step is too large")]
+    ObstacleCrossing {
+        /// The obstacle's name.
+        obstacle: String,
+        /// The load parameter or time of the attempt.
+        t: f64,
+    },
     /// The linear solver failed (its message).
     #[error("linear solver failed: {0}")]
     Linear(String),

@@ -134,6 +134,7 @@ pub use problem::material::{Epidermis, Kappa, Material, ZonalEnergy};
 pub use problem::material_model::{
     Constant, ConstantError, ConstantKind, ConstantValue, DensityForm, MaterialModel, ModelInfo,
 };
+pub use problem::mesh_obstacle::{AxisRotation, MeshObstacle};
 pub use problem::method::Method;
 pub use problem::obstacle::{Obstacle, Shape};
 pub use problem::schedule::{Curve, LoadLevel};
@@ -148,4 +149,4 @@ pub use simulation::{
 };
 /// The sparse matrix crate of [`Matrices`] and [`isochor_constraints::SparseMatrix`].
 pub use sprs;
-pub use terms::{ContactSummary, SurfaceContactSpec};
+pub use terms::{ContactSummary, SurfaceContactSpec, SurfaceContactSummary};

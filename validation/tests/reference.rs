@@ -103,9 +103,8 @@ impl Bounds {
         match spec {
             ProbeSpec::Displacement { .. }
             | ProbeSpec::Position { .. }
-            | ProbeSpec::RadiusIncrease { .. } => {
-                Tolerance::relative(self.relative, DISPLACEMENT_FLOOR)
-            }
+            | ProbeSpec::RadiusIncrease { .. }
+            | ProbeSpec::MinDistance => Tolerance::relative(self.relative, DISPLACEMENT_FLOOR),
             ProbeSpec::VolumeChange
             | ProbeSpec::VolumeRatio { .. }
             | ProbeSpec::ZoneVolumeChange { .. }

@@ -127,6 +127,14 @@ pub fn read_gmsh_with_groups(
     Ok((mesh, PhysicalGroups::new(groups)))
 }
 
+/// The node positions (in file order) and every triangle's corners (indices into them) of a
+/// Gmsh file, tets or none: the surface of a rigid obstacle
+/// ([`super::read_gmsh_surface`]).
+pub(super) fn read_triangles(path: &Path) -> Result<(Vec<Vec3>, Vec<[usize; 3]>), MeshError> {
+    let (nodes, _, raw) = parse(path, &read_text(path)?)?;
+    Ok((nodes.positions, raw.triangles))
+}
+
 /// The elements of one physical group as read: triangles (file node indices, line) and tets.
 #[derive(Default)]
 struct RawGroup {
@@ -141,12 +149,15 @@ struct RawGroups {
     names: HashMap<(usize, i64), String>,
     groups: BTreeMap<(usize, i64), RawGroup>,
     entities: HashMap<(usize, i64), Vec<i64>>,
+    /// Every triangle read (file node indices of its corners), in a group or not.
+    triangles: Vec<[usize; 3]>,
 }
 
 impl RawGroups {
-    /// Records a triangle (file node indices of its corners) read at `line` in the groups
-    /// `tags` (0 = none).
+    /// Records a triangle (file node indices of its corners) read at `line`, and in the
+    /// groups `tags` (0 = none).
     fn add_face(&mut self, tags: &[i64], face: [usize; 3], line: usize) {
+        self.triangles.push(face);
         for &tag in tags.iter().filter(|&&t| t != 0) {
             let group = self.groups.entry((2, tag)).or_default();
             group.faces.push((face, line));

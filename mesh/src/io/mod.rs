@@ -1,5 +1,6 @@
 //! File I/O: VTU (ASCII or zlib-compressed binary) and PVD for ParaView and meshio, Gmsh
-//! `.msh` (2.2 and 4.1 ASCII) and TetGen `.node`/`.ele` readers. Readers never panic on
+//! `.msh` (2.2 and 4.1 ASCII) and TetGen `.node`/`.ele` readers, and triangle surfaces of
+//! rigid obstacles (OBJ, STL, Gmsh triangles: [`read_surface`]). Readers never panic on
 //! malformed input: they return [`MeshError::Parse`] with the path, the line and what was
 //! expected. Writers are atomic.
 //!
@@ -15,16 +16,20 @@
 mod atomic;
 mod gmsh;
 mod pvd;
+mod surface;
 mod tetgen;
 mod text;
 mod vtk_binary;
+mod vtp;
 mod vtu;
 
 pub use crate::groups::{PhysicalGroup, PhysicalGroups};
 pub use gmsh::{read_gmsh, read_gmsh_elements, read_gmsh_with_groups};
-pub use pvd::write_pvd;
+pub use pvd::{write_pvd, write_pvd_parts};
+pub use surface::{read_gmsh_surface, read_obj, read_stl, read_surface, TriangleSurface};
 pub use tetgen::{read_tetgen, read_tetgen_with_regions};
 pub use text::excerpt;
+pub use vtp::write_vtp_triangles;
 pub use vtu::{
     read_vtu, read_vtu_elements, read_vtu_file, write_vtu, write_vtu_elements, Field, FieldValues,
     VtuEncoding, VtuFile,

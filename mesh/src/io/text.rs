@@ -72,6 +72,13 @@ impl<'a> Lines<'a> {
         }
     }
 
+    /// The next non-blank line split into fields, `None` at the end of the file.
+    pub fn next_fields(&mut self) -> Option<Fields<'a>> {
+        let path = self.path;
+        self.next_line()
+            .map(|(line, text)| Fields::new(path, line, text))
+    }
+
     /// Like [`Lines::fields`], but a line starting with `$` (a Gmsh section marker) means the
     /// section ended before its declared count.
     pub fn data(&mut self, what: &str) -> Result<Fields<'a>, MeshError> {
@@ -127,6 +134,11 @@ impl<'a> Fields<'a> {
         self.tokens
             .next()
             .ok_or_else(|| self.error(format!("expected {what}, found end of line")))
+    }
+
+    /// The next field as it is, `None` at the end of the line.
+    pub fn word(&mut self) -> Option<&'a str> {
+        self.tokens.next()
     }
 
     /// The next field as a non-negative integer.

@@ -4,6 +4,7 @@
 use super::builtin;
 use super::limits;
 use super::mesh::MeshSpec;
+use super::obstacles::ObstacleSpec;
 use super::overrides::{apply_all, Override};
 use super::scene::Scene;
 use crate::error::SceneError;
@@ -128,8 +129,9 @@ impl SceneSource {
         Ok(scene)
     }
 
-    /// Resolves a relative mesh path of every body against the scene's folder and refuses a
-    /// mesh path that is a device, FIFO or socket (the header scan of
+    /// Resolves a relative mesh path of every body and meshed obstacle against the scene's
+    /// folder and refuses a
+    /// path that is a device, FIFO or socket (the header scan of
     /// [`limits::check_memory`] reads it next).
     fn resolve_paths(&self, mut scene: Scene) -> Result<Scene, SceneError> {
         let meshes = scene.mesh.iter_mut();
@@ -149,6 +151,14 @@ impl SceneSource {
                 for ext in ["node", "ele"] {
                     isochor_mesh::io::check_regular_file(&path.with_extension(ext))?;
                 }
+            }
+        }
+        for obstacle in &mut scene.obstacles {
+            if let ObstacleSpec::Mesh { path, .. } = obstacle {
+                if path.is_relative() {
+                    *path = self.base_dir.join(&*path);
+                }
+                isochor_mesh::io::check_regular_file(path)?;
             }
         }
         Ok(scene)

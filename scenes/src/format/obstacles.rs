@@ -1,9 +1,13 @@
-//! `[[obstacles]]`: rigid obstacles the body's boundary meets in frictionless contact.
+//! `[[obstacles]]`: rigid obstacles the body's boundary meets: analytic shapes in
+//! frictionless augmented-Lagrangian contact, and meshed surfaces (`shape = "mesh"`) in the
+//! barrier contact of `[contact]`.
 
+use super::bodies::{PlacementSpec, RotationSpec};
 use super::common::Vector;
 use super::common::{is_zero, z_axis};
 use super::conditions::CurveSpec;
 use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
 
 /// A rigid obstacle, translated by `translate` (and a round one's radius changed by
 /// `radius_change`) over the stepping (quasi-static load parameter or `time / duration`),
@@ -84,16 +88,58 @@ pub enum ObstacleSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         curve: Option<CurveSpec>,
     },
+    /// A rigid triangle surface, open (a plate) or closed, read from an OBJ, STL (ASCII or
+    /// binary) or Gmsh `.msh` file (its triangles), placed by `place` before anything else
+    /// and moved by `translate` and `rotate`, both reached at the end of the run. It meets
+    /// the bodies' surfaces in barrier contact (turned on with the `[contact]` defaults
+    /// when the scene has no `[contact]` table).
+    Mesh {
+        /// The surface file; a relative path is resolved against the scene file's folder.
+        path: PathBuf,
+        /// Its name in output columns and files (default `obstacle<i>`, `i` its index in
+        /// `[[obstacles]]`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        name: Option<String>,
+        /// A rigid placement of the file's surface (as a body's `place`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        place: Option<PlacementSpec>,
+        /// Displacement at the end of the run (default none).
+        #[serde(default)]
+        translate: Vector,
+        /// A rotation reached at the end of the run (spelled as a Dirichlet `rotate`),
+        /// before the translation.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        rotate: Option<RotationSpec>,
+        /// The motion over the run (default: the fraction of the run).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        curve: Option<CurveSpec>,
+    },
 }
 
 impl ObstacleSpec {
+    /// Whether it is a meshed obstacle (barrier contact) rather than an analytic shape.
+    pub fn is_mesh(&self) -> bool {
+        matches!(self, ObstacleSpec::Mesh { .. })
+    }
+
+    /// The name of obstacle `index` in output columns and files.
+    pub fn name(&self, index: usize) -> String {
+        match self {
+            ObstacleSpec::Mesh {
+                name: Some(name), ..
+            } => name.clone(),
+            _ => format!("obstacle{index}"),
+        }
+    }
+
     /// The obstacle's motion curve, if it has one.
     pub fn curve(&self) -> &Option<CurveSpec> {
         match self {
             ObstacleSpec::HalfSpace { curve, .. }
             | ObstacleSpec::Sphere { curve, .. }
             | ObstacleSpec::Cylinder { curve, .. }
-            | ObstacleSpec::Ring { curve, .. } => curve,
+            | ObstacleSpec::Ring { curve, .. }
+            | ObstacleSpec::Mesh { curve, .. } => curve,
         }
     }
 }

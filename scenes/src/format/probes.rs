@@ -114,6 +114,11 @@ pub enum ProbeSpec {
     MaxPenetration,
     /// The first step or frame with a vertex in contact (NaN if none).
     FirstContact,
+    /// The smallest distance between two contact primitives (point-triangle or edge-edge,
+    /// between bodies, a body and itself or a body and a meshed obstacle) over the run's
+    /// accepted steps, in metres; only pairs within the barrier's `dhat` are measured (NaN
+    /// when no pair came that close, or without barrier contact).
+    MinDistance,
     /// Largest norm of the total contact force over the run, or of the force of obstacle
     /// `obstacle` alone (its index in `obstacles`, from 0): two obstacles squeezing a body
     /// push with opposite forces that cancel in the total.

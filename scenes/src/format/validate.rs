@@ -66,9 +66,10 @@ type SectionCheck = fn(&Scene) -> Result<(), Fault>;
 /// Checks the cross-key rules of `scene` (read from `origin`) that serde cannot express, one
 /// section at a time, then the bounds on its steps.
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
-    let sections: [SectionCheck; 12] = [
+    let sections: [SectionCheck; 13] = [
         bodies,
         contact,
+        obstacle_names,
         material_and_regions,
         selections,
         conditions,
@@ -210,6 +211,32 @@ fn contact(scene: &Scene) -> Result<(), Fault> {
                     o.obstacle,
                     scene.obstacles.len()
                 ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The obstacles' names (in output columns and file names): letters, digits, `-` and `_`,
+/// each used once.
+fn obstacle_names(scene: &Scene) -> Result<(), Fault> {
+    let mut seen = std::collections::BTreeSet::new();
+    for (i, o) in scene.obstacles.iter().enumerate() {
+        let name = o.name(i);
+        let plain = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+        if name.is_empty() || !name.chars().all(plain) {
+            return Err(fault(
+                format!("obstacles.{i}.name"),
+                format!(
+                    "`{}` must be letters, digits, `-` and `_` (it names output columns and files)",
+                    isochor_mesh::io::excerpt(&name)
+                ),
+            ));
+        }
+        if !seen.insert(name.clone()) {
+            return Err(fault(
+                format!("obstacles.{i}.name"),
+                format!("`{name}` names an earlier obstacle too"),
             ));
         }
     }
@@ -775,7 +802,12 @@ fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(
         .iter()
         .fold((nodes[0], nodes[0]), |(lo, hi), x| (lo.inf(x), hi.sup(x)));
     let depth = tolerance * (hi - lo).norm();
-    for (i, (obstacle, spec)) in problem.obstacles.iter().zip(&scene.obstacles).enumerate() {
+    let analytic = scene
+        .obstacles
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| !o.is_mesh());
+    for (obstacle, (i, spec)) in problem.obstacles.iter().zip(analytic) {
         let (inside, deepest) = nodes
             .iter()
             .map(|x| obstacle.distance(x, 0.0).0)
@@ -787,6 +819,7 @@ fn obstacles_clear(scene: &Scene, problem: &Problem, tolerance: f64) -> Result<(
                 ObstacleSpec::Sphere { .. } => "sphere",
                 ObstacleSpec::Cylinder { .. } => "cylinder",
                 ObstacleSpec::Ring { .. } => "ring",
+                ObstacleSpec::Mesh { .. } => "meshed",
             };
             return Err(SceneError::Invalid {
                 origin: format!("scene {}", scene.name),

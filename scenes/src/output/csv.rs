@@ -62,11 +62,25 @@ fn volume_error(errors: &[f64], i: usize) -> String {
     errors.get(i).map(|v| format!("{v:e}")).unwrap_or_default()
 }
 
-/// `steps.csv`: one row per accepted step or frame.
-pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
+/// `steps.csv`: one row per accepted step or frame; after the fixed columns, the barrier's
+/// `contact_pairs`, per obstacle of `obstacles` (their names, in the scene's order) the force
+/// it exerts on the bodies as `contact_force_<name>_x,_y,_z`, and per pair of bodies `a_b`
+/// of `body_pairs` the force body `b` exerts on body `a` as `contact_force_a_b_x,_y,_z`.
+pub fn write_steps_csv(
+    path: &Path,
+    history: &[StepRecord],
+    obstacles: &[String],
+    body_pairs: &[String],
+) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts\n",
+        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts,contact_pairs",
     );
+    for name in obstacles.iter().chain(body_pairs) {
+        for axis in ["x", "y", "z"] {
+            let _ = write!(out, ",contact_force_{name}_{axis}");
+        }
+    }
+    out.push('\n');
     for s in history {
         let _ = writeln!(
             out,
@@ -94,6 +108,19 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
             s.increment,
             s.cuts.len()
         );
+        // The row's tail: the pairs, then each obstacle's force.
+        out.pop();
+        let _ = write!(out, ",{}", s.contact.pairs);
+        for k in 0..obstacles.len() {
+            let f = s
+                .contact
+                .obstacle_forces
+                .get(k)
+                .copied()
+                .unwrap_or([0.0; 3]);
+            let _ = write!(out, ",{:e},{:e},{:e}", f[0], f[1], f[2]);
+        }
+        out.push('\n');
     }
     write_file(path, out.as_bytes())
 }

@@ -10,9 +10,14 @@
 //! components, tension positive), `mean_stress` (`tr(sigma)/3`, tension positive: the
 //! hydrostatic pressure in the usual sense is `-mean_stress`), `von_mises`, `J`, `region` (0:
 //! the body's material, `i`: the scene's `i`-th region), `zone` (zonal method).
+//!
+//! Each meshed obstacle's placed surface is written beside each frame as a `.vtp` of
+//! triangles, listed in the `.pvd` as a further part of the frame's time.
 
 use crate::error::SceneError;
-use isochor_mesh::io::{write_pvd, write_vtu_elements, Field, VtuEncoding};
+use isochor_mesh::io::{
+    write_pvd, write_pvd_parts, write_vtp_triangles, write_vtu_elements, Field, VtuEncoding,
+};
 use isochor_mesh::{ElementMesh, MeshError, Vec3};
 use nalgebra::Matrix3;
 use std::path::{Path, PathBuf};
@@ -32,6 +37,8 @@ pub struct FrameFields<'a> {
     pub nodal_pressures: &'a [f64],
     /// Contact force per node (optional).
     pub contact_forces: &'a [Vec3],
+    /// Where each meshed obstacle's vertices stand (empty: no obstacle surface written).
+    pub obstacle_positions: &'a [Vec<Vec3>],
 }
 
 impl<'a> FrameFields<'a> {
@@ -44,6 +51,7 @@ impl<'a> FrameFields<'a> {
             stress: &[],
             nodal_pressures: &[],
             contact_forces: &[],
+            obstacle_positions: &[],
         }
     }
 
@@ -98,6 +106,8 @@ pub struct FrameWriter {
     region_ids: Vec<i32>,
     body_ids: Option<Vec<i32>>,
     deformed_points: bool,
+    /// The meshed obstacles' names and triangles.
+    obstacles: Vec<(String, Vec<[usize; 3]>)>,
     entries: Vec<(f64, String)>,
 }
 
@@ -122,8 +132,33 @@ impl FrameWriter {
             region_ids,
             body_ids: None,
             deformed_points: false,
+            obstacles: Vec::new(),
             entries: Vec::new(),
         }
+    }
+
+    /// Writes each meshed obstacle's placed surface (`names[k]`, `triangles[k]`) beside
+    /// every frame, as `STEM_00012_NAME.vtp`, listed in the `.pvd` as parts 1, 2, ... of the
+    /// frame's time (the body is part 0).
+    pub fn with_obstacles(mut self, obstacles: Vec<(String, Vec<[usize; 3]>)>) -> Self {
+        self.obstacles = obstacles;
+        self
+    }
+
+    /// The file of obstacle `k` beside the frame file `frame`.
+    fn obstacle_file(&self, frame: &str, k: usize) -> String {
+        let name: String = self.obstacles[k]
+            .0
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        format!("{}_{name}.vtp", frame.trim_end_matches(".vtu"))
     }
 
     /// Writes the body of each tet as the cell field `body` (a scene of several bodies).
@@ -211,6 +246,16 @@ impl FrameWriter {
             self.encoding,
         )
         .map_err(written)?;
+        for (k, placed) in fields
+            .obstacle_positions
+            .iter()
+            .enumerate()
+            .take(self.obstacles.len())
+        {
+            let file = self.obstacle_file(&name, k);
+            write_vtp_triangles(self.dir.join(file), placed, &self.obstacles[k].1)
+                .map_err(written)?;
+        }
         self.entries.push((t, name));
         Ok(())
     }
@@ -227,7 +272,20 @@ impl FrameWriter {
 
     /// Writes the `.pvd` collection of the frames written so far.
     pub fn finish(&self) -> Result<(), SceneError> {
-        write_pvd(self.dir.join(format!("{}.pvd", self.stem)), &self.entries).map_err(written)
+        let path = self.dir.join(format!("{}.pvd", self.stem));
+        if self.obstacles.is_empty() {
+            return write_pvd(path, &self.entries).map_err(written);
+        }
+        let parts: Vec<(f64, usize, String)> = self
+            .entries
+            .iter()
+            .flat_map(|(t, frame)| {
+                std::iter::once((*t, 0, frame.clone())).chain(
+                    (0..self.obstacles.len()).map(|k| (*t, k + 1, self.obstacle_file(frame, k))),
+                )
+            })
+            .collect();
+        write_pvd_parts(path, &parts).map_err(written)
     }
 }
 

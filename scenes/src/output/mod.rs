@@ -10,6 +10,7 @@ mod csv;
 mod frames;
 mod lock;
 mod marker;
+mod obstacle_shapes;
 mod plots;
 mod potential;
 mod preview;
@@ -18,6 +19,7 @@ pub use atomic::{write_file, OutputDir, CHECKPOINT_FILE};
 pub use csv::{write_iterations_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
 pub use marker::{OutputIdentity, MARKER_FILE};
+pub use obstacle_shapes::obstacle_triangles;
 pub(crate) use plots::{draw_legend, finish_plot, plot_error, range, register_font, tick};
 pub use plots::{plot_energy, plot_residuals};
 pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};
@@ -47,7 +49,12 @@ pub fn write_run_outputs(
         .cloned()
         .collect();
     write_iterations_csv(&dir.join("iterations.csv"), &attempted)?;
-    write_steps_csv(&dir.join("steps.csv"), &result.history)?;
+    write_steps_csv(
+        &dir.join("steps.csv"),
+        &result.history,
+        &result.obstacles,
+        &result.body_pairs,
+    )?;
     if plots {
         let title = run_title(result);
         plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;

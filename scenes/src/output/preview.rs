@@ -39,6 +39,8 @@ const FEATURE_ANGLE_DEG: f64 = 30.0;
 const BACKGROUND: RGBColor = WHITE;
 /// The rest outline's color.
 pub const OUTLINE: RGBColor = RGBColor(128, 128, 128);
+/// The obstacles' color (before shading).
+pub const OBSTACLE: RGBColor = RGBColor(190, 190, 200);
 /// Color bar: `(left, top, right, bottom)` pixels.
 const BAR: (i32, i32, i32, i32) = (690, 80, 712, 560);
 
@@ -53,6 +55,8 @@ pub struct PreviewOptions<'a> {
     pub gravity: Option<[f64; 3]>,
     /// The title (scene and method; whether the run failed).
     pub title: &'a str,
+    /// The obstacles' triangles where they stand, drawn in grey (the camera frames the body).
+    pub obstacles: &'a [[Vec3; 3]],
 }
 
 /// Draws the boundary of `mesh` at `fields.positions` and writes it as a PNG to `path`.
@@ -99,6 +103,10 @@ fn render(
             let color = shade(colormap(value, lo, hi), camera.lambert(&x));
             canvas.fill_triangle(x.map(|p| camera.project(&p)), color);
         }
+        for x in options.obstacles {
+            let color = shade(OBSTACLE, camera.lambert(x).max(0.3));
+            canvas.fill_triangle(x.map(|p| camera.project(&p)), color);
+        }
         if options.rest_outline {
             for path in rest_outline(&surface, rest, camera) {
                 for pair in path.windows(2) {
@@ -119,8 +127,12 @@ fn render(
         .map_err(drawing_error)?;
         let note = match (&camera, options.rest_outline) {
             (None, _) => "nothing to draw: the body has no extent or no finite position",
-            (Some(_), true) => "deformed body; rest shape outlined in grey",
-            (Some(_), false) => "deformed body",
+            (Some(_), true) if options.obstacles.is_empty() => {
+                "deformed body; rest shape outlined in grey"
+            }
+            (Some(_), true) => "deformed body; rest shape outlined in grey; obstacles light grey",
+            (Some(_), false) if options.obstacles.is_empty() => "deformed body",
+            (Some(_), false) => "deformed body; obstacles light grey",
         };
         root.draw(&Text::new(note, (10, 38), ("sans-serif", 14).into_font()))
             .map_err(drawing_error)?;
@@ -526,6 +538,7 @@ mod tests {
             rest_outline,
             gravity: None,
             title: "test",
+            obstacles: &[],
         }
     }
 
@@ -583,6 +596,51 @@ mod tests {
         assert_eq!(outside, 0);
         let grey = outline_pixels(&picture);
         assert!(grey > 500, "{grey} outline pixels");
+    }
+
+    /// A plate under the cube is drawn in light grey around it, and the body stays on top.
+    #[test]
+    fn obstacles_are_drawn_in_grey() {
+        let mesh = cube(1);
+        let plate = [
+            [
+                Vec3::new(-1.0, -1.0, 0.0),
+                Vec3::new(2.0, -1.0, 0.0),
+                Vec3::new(2.0, 2.0, 0.0),
+            ],
+            [
+                Vec3::new(-1.0, -1.0, 0.0),
+                Vec3::new(2.0, 2.0, 0.0),
+                Vec3::new(-1.0, 2.0, 0.0),
+            ],
+        ];
+        let fields = FrameFields::rest(&mesh);
+        let bare = render(&mesh, &fields, &options(false)).unwrap();
+        let with = render(
+            &mesh,
+            &fields,
+            &PreviewOptions {
+                obstacles: &plate,
+                ..options(false)
+            },
+        )
+        .unwrap();
+        let light = |rgb: &[u8]| {
+            rgb.chunks_exact(3)
+                .filter(|p| !is_body(p) && p[0] < 250 && p[0] > 40)
+                .count()
+        };
+        assert!(
+            light(&with) > light(&bare) + 1000,
+            "{} against {}",
+            light(&with),
+            light(&bare)
+        );
+        assert_eq!(
+            body_pixels(&with).0,
+            body_pixels(&bare).0,
+            "the body is in front"
+        );
     }
 
     /// Mid-edge nodes pulled inward dent the drawn faces: fewer body pixels than with the

@@ -150,7 +150,7 @@ fn invalid(scene: &Scene, key: String, message: String) -> SceneError {
 }
 
 /// The rigid map of a placement: the rotation about its axis, then the translation.
-fn placement(place: &PlacementSpec) -> impl Fn(&Vec3) -> Vec3 {
+pub(super) fn placement(place: &PlacementSpec) -> impl Fn(&Vec3) -> Vec3 {
     let rotation = place.rotate.as_ref().map(|r| {
         let axis = Unit::new_normalize(Vec3::from(r.axis));
         (

@@ -5,18 +5,20 @@ use super::bodies::SceneBodies;
 use crate::format::{ContactSpec, DEFAULT_EPSV};
 use isochor_solvers::{FrictionSpec, SurfaceFrictionSpec};
 
-/// The friction of `contact` for a scene of `bodies` (over `num_nodes` nodes) with
-/// `num_obstacles` analytic obstacles and barrier reach `dhat`; `None` when every
-/// coefficient is 0 (the scene is then frictionless, exactly as without the keys).
+/// The friction of `contact` for a scene of `bodies` (over `num_nodes` nodes) whose
+/// analytic obstacles are the `[[obstacles]]` entries `analytic` (in the solver's order),
+/// with barrier reach `dhat`; `None` when every coefficient is 0 (the scene is then
+/// frictionless, exactly as without the keys).
 pub fn friction(
     contact: &ContactSpec,
     bodies: &SceneBodies,
     num_nodes: usize,
-    num_obstacles: usize,
+    analytic: &[usize],
     dhat: f64,
 ) -> Option<FrictionSpec> {
-    let obstacles: Vec<f64> = (0..num_obstacles)
-        .map(|k| {
+    let obstacles: Vec<f64> = analytic
+        .iter()
+        .map(|&k| {
             contact
                 .obstacles
                 .iter()

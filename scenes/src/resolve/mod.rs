@@ -20,10 +20,12 @@ pub use mesh::{build_mesh, mesh_with_groups, read_mesh_file, SceneMesh};
 pub use selections::Selections;
 
 use crate::error::SceneError;
-use crate::format::{limits, validate, Scene};
+use crate::format::{limits, validate, ContactSpec, Scene};
 use isochor_mesh::element::Part;
 use isochor_mesh::Zones;
-use isochor_solvers::{FrictionSpec, Method, Problem, Settings, Stepping, SurfaceContactSpec};
+use isochor_solvers::{
+    FrictionSpec, MeshObstacle, Method, Problem, Settings, Stepping, SurfaceContactSpec,
+};
 
 /// The default reach of the contact barrier, relative to the rest mesh's bounding-box
 /// diagonal (IPC's default, Li et al. 2020).
@@ -49,6 +51,8 @@ pub struct ResolvedScene {
     /// Friction against the obstacles and between surfaces, if `[contact]` gives a non-zero
     /// coefficient.
     pub friction: Option<FrictionSpec>,
+    /// The meshed obstacles (in barrier contact: `surface_contact` is then on).
+    pub mesh_obstacles: Vec<MeshObstacle>,
     /// What a user should know about how the meshes were taken (the run's warnings).
     pub notices: Vec<String>,
 }
@@ -67,6 +71,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
     let dirichlet = problem::dirichlet(scene, &selections)?;
     let loads = problem::loads(scene, &selections)?;
     let obstacles = problem::obstacles(scene)?;
+    let mesh_obstacles = problem::mesh_obstacles(scene)?;
     let method = scene.method();
     let zones = if zones::needed(scene) {
         Some(zones::zones(
@@ -83,7 +88,18 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         ..problem::settings(&scene.solver)
     };
     let stepping = problem::stepping(&scene.stepping);
-    let surface_contact = scene.contact.as_ref().map(|c| {
+    // A meshed obstacle turns barrier contact on, with the `[contact]` defaults (those of
+    // an empty table).
+    let defaults: ContactSpec = toml::from_str("").map_err(|e| SceneError::Invalid {
+        origin: format!("scene {}", scene.name),
+        key: "contact".into(),
+        message: format!("the defaults of [contact]: {e}"),
+    })?;
+    let contact = scene
+        .contact
+        .as_ref()
+        .or((!mesh_obstacles.is_empty()).then_some(&defaults));
+    let surface_contact = contact.map(|c| {
         let (lo, hi) = mesh.mesh.corners().bounding_box();
         SurfaceContactSpec {
             dhat: c.dhat.unwrap_or(DEFAULT_DHAT * (hi - lo).norm()),
@@ -96,7 +112,10 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         .as_ref()
         .zip(surface_contact.as_ref())
         .and_then(|(c, s)| {
-            friction::friction(c, &bodies, mesh.mesh.num_nodes(), obstacles.len(), s.dhat)
+            let analytic: Vec<usize> = (0..scene.obstacles.len())
+                .filter(|&i| !scene.obstacles[i].is_mesh())
+                .collect();
+            friction::friction(c, &bodies, mesh.mesh.num_nodes(), &analytic, s.dhat)
         });
     let problem = Problem {
         mesh: mesh.mesh,
@@ -125,6 +144,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         bodies,
         surface_contact,
         friction,
+        mesh_obstacles,
         notices,
     })
 }

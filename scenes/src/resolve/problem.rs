@@ -4,14 +4,16 @@
 use super::selections::Selections;
 use crate::error::SceneError;
 use crate::format::{
-    CurveSpec, LinearName, MotionSpec, ObstacleSpec, OrderingName, PreconditionerName, Scene,
-    SolverSpec, SteppingSpec, DEFAULT_VOLUME_RECOVERY,
+    CurveSpec, LinearName, MotionSpec, ObstacleSpec, OrderingName, PlacementSpec,
+    PreconditionerName, Scene, SolverSpec, SteppingSpec, DEFAULT_VOLUME_RECOVERY,
 };
+use isochor_mesh::io::read_surface;
 use isochor_mesh::Vec3;
 use isochor_solvers::linear::Ordering;
 use isochor_solvers::{
-    Adaptive, Curve, Dirichlet, IterativeSettings, LinearSolver, Load, Motion, Obstacle,
-    PreconditionerKind, ScheduledLoad, Settings, Shape, StepControl, Stepping, VolumeProjection,
+    Adaptive, AxisRotation, Curve, Dirichlet, IterativeSettings, LinearSolver, Load, MeshObstacle,
+    Motion, Obstacle, PreconditionerKind, ScheduledLoad, Settings, Shape, StepControl, Stepping,
+    VolumeProjection,
 };
 
 /// The Dirichlet conditions on their selections' nodes.
@@ -67,8 +69,43 @@ pub fn obstacles(scene: &Scene) -> Result<Vec<Obstacle>, SceneError> {
         .obstacles
         .iter()
         .enumerate()
+        .filter(|(_, o)| !o.is_mesh())
         .map(|(i, o)| obstacle(o, i))
         .collect()
+}
+
+/// The meshed obstacles of `[[obstacles]]` (`shape = "mesh"`), in the scene's order: each
+/// surface file read, placed, with its motion.
+pub fn mesh_obstacles(scene: &Scene) -> Result<Vec<MeshObstacle>, SceneError> {
+    let mut meshed = Vec::new();
+    for (i, spec) in scene.obstacles.iter().enumerate() {
+        let ObstacleSpec::Mesh {
+            path,
+            place,
+            translate,
+            rotate,
+            curve: points,
+            ..
+        } = spec
+        else {
+            continue;
+        };
+        let surface = read_surface(path)?;
+        let place = super::bodies::placement(place.as_ref().unwrap_or(&PlacementSpec::default()));
+        meshed.push(MeshObstacle {
+            name: spec.name(i),
+            vertices: surface.vertices.iter().map(place).collect(),
+            triangles: surface.triangles,
+            translate: vec3(*translate),
+            rotate: rotate.as_ref().map(|r| AxisRotation {
+                center: vec3(r.center),
+                axis: vec3(r.axis),
+                angle: r.degrees.to_radians(),
+            }),
+            curve: curve(points, &format!("obstacles.{i}.curve"))?,
+        });
+    }
+    Ok(meshed)
 }
 
 /// The solver's curve of the scene key `key`.
@@ -135,6 +172,13 @@ fn obstacle(spec: &ObstacleSpec, index: usize) -> Result<Obstacle, SceneError> {
             radius_change,
             curve,
         ),
+        ObstacleSpec::Mesh { .. } => {
+            return Err(SceneError::Invalid {
+                origin: "scene".into(),
+                key: format!("obstacles.{index}"),
+                message: "a meshed obstacle is no analytic shape".into(),
+            })
+        }
         ObstacleSpec::Ring {
             center,
             axis,

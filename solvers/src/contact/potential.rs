@@ -248,6 +248,22 @@ impl BarrierPotential {
             .collect()
     }
 
+    /// The number of candidate pairs closer than `dhat` at `x`.
+    pub fn count_within(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> usize {
+        pairs(surface, candidates, rest)
+            .filter(|pair| {
+                let y = pair.nodes.map(|n| x[n]);
+                pair.kind(&y).squared_distance(&y) < self.dhat_sq()
+            })
+            .count()
+    }
+
     /// The smallest distance (not squared) over the candidate pairs at `x`; `+inf` for none.
     pub fn min_distance(
         surface: &ContactSurface,

@@ -6,6 +6,7 @@ use crate::error::SolverError;
 use crate::problem::friction::FrictionSpec;
 use crate::problem::loads::{Load, ScheduledLoad};
 use crate::problem::material::ZonalEnergy;
+use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::method::Method;
 use crate::problem::Problem;
 use crate::terms::{
@@ -360,6 +361,18 @@ impl Model {
             }
             Some(surfaces) => Some(SurfaceFriction::new(surfaces, spec.epsv)),
         };
+        Ok(())
+    }
+
+    /// Adds meshed rigid obstacles to the barrier contact of [`Self::set_surface_contact`]
+    /// (which must be on).
+    pub fn set_mesh_obstacles(&mut self, obstacles: Vec<MeshObstacle>) -> Result<(), SolverError> {
+        let Some(contact) = self.surface_contact.take() else {
+            return Err(SolverError::InvalidProblem(
+                "meshed obstacles need surface contact: turn it on first".into(),
+            ));
+        };
+        self.surface_contact = Some(contact.with_obstacles(obstacles)?);
         Ok(())
     }
 

@@ -7,6 +7,7 @@ pub mod friction;
 pub mod loads;
 pub mod material;
 pub mod material_model;
+pub mod mesh_obstacle;
 pub mod method;
 pub mod obstacle;
 pub mod schedule;

@@ -5,6 +5,7 @@ use super::Simulation;
 use crate::error::SolverError;
 use crate::model::{Model, NonlinearScheme};
 use crate::problem::friction::FrictionSpec;
+use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::schedule::LoadLevel;
 use crate::problem::Problem;
 use crate::settings::{LinearSolver, Settings};
@@ -77,6 +78,15 @@ impl Simulation {
         self.model.set_friction(spec)
     }
 
+    /// Adds meshed rigid obstacles to the barrier contact of [`Self::set_surface_contact`]
+    /// (which must be on): the bodies' surfaces meet their triangles, placed at each
+    /// attempt's load level; an obstacle motion that would cross a body in one step fails
+    /// the attempt, so adaptive stepping cuts the increment. Errors: surface contact off, a
+    /// bad obstacle, or one intersecting a body at the start.
+    pub fn set_mesh_obstacles(&mut self, obstacles: Vec<MeshObstacle>) -> Result<(), SolverError> {
+        self.model.set_mesh_obstacles(obstacles)
+    }
+
     /// Sets the velocity of every node (the initial velocity of a dynamic run; quasi-static
     /// stepping ignores it). Errors: a length other than the number of nodes, or a value that
     /// is not finite.
@@ -131,6 +141,9 @@ impl Simulation {
                 "the checkpoint's progress is not a run's: t = {}, increment = {}",
                 progress.t, progress.increment
             )));
+        }
+        if let Some(surface) = &self.model.surface_contact {
+            surface.forget_placement();
         }
         if let Some(contact) = &self.model.contact {
             contact.set_multipliers(contact_multipliers)?;

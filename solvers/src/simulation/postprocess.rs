@@ -41,6 +41,17 @@ impl Simulation {
             contact_forces: contact
                 .map(|c| c.vertex_forces(&self.state.positions))
                 .unwrap_or_default(),
+            surface_contact: self
+                .model
+                .surface_contact
+                .as_ref()
+                .map(|c| c.summary(&self.state.positions)),
+            mesh_obstacles: self
+                .model
+                .surface_contact
+                .as_ref()
+                .map(|c| c.placed_obstacles())
+                .unwrap_or_default(),
             report,
             cuts,
             contact_multipliers: contact.map(|c| c.multipliers()).unwrap_or_default(),

@@ -100,6 +100,9 @@ impl Simulation {
             self.state = run
                 .accept(&self.state, x, p, &attempt)
                 .map_err(|e| failure(e, step, &self.state, &reports))?;
+            if let Some(contact) = &self.model.surface_contact {
+                contact.accept_step();
+            }
             let report = reports.last().expect("pushed above");
             progress = stepper.accept(&progress, &attempt, report.newton_iterations());
             let inverted = self.model.mesh.count_inverted(&self.state.positions);
@@ -238,14 +241,24 @@ impl<'s> Run<'s> {
             increment: attempt.increment,
             ..StepReport::default()
         };
+        // The meshed obstacles move to the attempt's level; a crossing fails the attempt.
+        let placed = self
+            .system
+            .model
+            .surface_contact
+            .as_ref()
+            .map_or(Ok(()), |c| {
+                c.begin_attempt(&state.positions, &attempt.level)
+            });
         let friction = Friction {
             start: &state.positions,
             start_level,
         };
-        friction.lag(&self.system, &x);
-        let result = self
-            .solve(&mut x, &mut p, &target, &friction, &mut report)
-            .and_then(|()| self.check_domain(&x));
+        let result = placed.and_then(|()| {
+            friction.lag(&self.system, &x);
+            self.solve(&mut x, &mut p, &target, &friction, &mut report)
+                .and_then(|()| self.check_domain(&x))
+        });
         if let Some(contact) = &self.system.model.contact {
             report.contact = contact.summary(&x);
         }

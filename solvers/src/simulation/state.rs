@@ -4,6 +4,7 @@
 use super::stepper::Progress;
 use crate::error::SolverError;
 use crate::nonlinear::report::StepReport;
+use crate::terms::SurfaceContactSummary;
 use isochor_mesh::Vec3;
 use nalgebra::Matrix3;
 use std::time::Duration;
@@ -76,6 +77,10 @@ pub struct Frame<'a> {
     pub inverted_tets: usize,
     /// Contact force on every vertex (empty without obstacles).
     pub contact_forces: Vec<Vec3>,
+    /// The barrier contact of the bodies' surfaces at the state (`None` when it is off).
+    pub surface_contact: Option<SurfaceContactSummary>,
+    /// Where each meshed obstacle's vertices stand at the state (empty without).
+    pub mesh_obstacles: Vec<Vec<Vec3>>,
     /// The step's iteration log.
     pub report: &'a StepReport,
     /// The failed attempts (cut steps) since the previous accepted step.

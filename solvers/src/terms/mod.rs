@@ -21,7 +21,7 @@ pub use epidermis::EpidermisTerm;
 pub use faces::Faces;
 pub use inertia::Inertia;
 pub use pressure::FollowerPressure;
-pub use surface_contact::{SurfaceContact, SurfaceContactSpec};
+pub use surface_contact::{SurfaceContact, SurfaceContactSpec, SurfaceContactSummary};
 pub use surface_friction::SurfaceFriction;
 
 use crate::error::SolverError;

@@ -8,16 +8,27 @@
 //! the assembly rebuilds its pattern and the solvers their symbolic factorization only then.
 //! Energies and gradients away from that state (line-search trials) take the pairs within
 //! `dhat` of the trial state itself, so the line search sees every pair.
+//!
+//! Meshed rigid obstacles ([`MeshObstacle`], added by [`SurfaceContact::with_obstacles`])
+//! join the surface: their triangles' vertices follow the bodies' nodes in the term's
+//! position vector, placed at the attempt's load level ([`SurfaceContact::begin_attempt`]);
+//! they are no degrees of freedom, so their gradient entries and Hessian rows are dropped,
+//! and pairs between two obstacle primitives never count.
+
+mod rigid;
+mod step_limit;
 
 use super::{block_pattern, EnergyTerm};
 use crate::contact::{BarrierPotential, PairForce, StiffnessBounds};
 use crate::error::SolverError;
+use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::schedule::LoadLevel;
 use isochor_mesh::contact::{
-    contact_candidates, edge_edge_ccd, edge_edge_squared_distance, point_triangle_ccd,
-    point_triangle_squared_distance, Candidates, CcdSettings, ContactSurface, PairFilter,
+    contact_candidates, intersecting_triangles, Candidates, CcdSettings, ContactSurface, PairFilter,
 };
 use isochor_mesh::Vec3;
+use nalgebra::SMatrix;
+use rigid::RigidSurfaces;
 use std::sync::RwLock;
 
 /// What a scene asks of surface contact.
@@ -31,6 +42,20 @@ pub struct SurfaceContactSpec {
     pub node_bodies: Vec<usize>,
 }
 
+/// What the surface contact is at a state, for outputs.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SurfaceContactSummary {
+    /// The pairs of primitives closer than `dhat`.
+    pub pairs_within_dhat: usize,
+    /// The smallest distance between two primitives (`+inf` when none is within `dhat`).
+    pub min_distance: f64,
+    /// The force each meshed obstacle exerts on the bodies, in order.
+    pub obstacle_forces: Vec<Vec3>,
+    /// For each pair of bodies `(a, b)`, `a < b`, in the order `(0, 1), (0, 2), ..., (1, 2),
+    /// ...`: the force body `b` exerts on body `a` (empty with one body).
+    pub body_pair_forces: Vec<Vec3>,
+}
+
 /// The pairs of the current pattern, the stiffness, and how often the pattern changed.
 #[derive(Debug, Clone, Default)]
 struct Active {
@@ -40,21 +65,22 @@ struct Active {
     rebuilds: usize,
 }
 
-/// The barrier contact term of a mesh's boundary surface.
+/// The barrier contact term of a mesh's boundary surface (and of meshed obstacles).
 #[derive(Debug)]
 pub struct SurfaceContact {
+    /// The scene's ask; `node_bodies` extended over the obstacle vertices (each obstacle a
+    /// body of its own).
     spec: SurfaceContactSpec,
+    /// The bodies' triangles, then the obstacles'.
     surface: ContactSurface,
+    /// The rest positions of the bodies' nodes, then the obstacles' start positions.
     rest: Vec<Vec3>,
+    rigid: RigidSurfaces,
     bounds: StiffnessBounds,
     bbox_diagonal: f64,
     ccd: CcdSettings,
     active: RwLock<Active>,
 }
-
-/// The fraction of the time of impact a line search may go: the pair keeps a fifth of its
-/// gap (IPC takes 0.8 as well).
-const TOI_FRACTION: f64 = 0.8;
 
 impl SurfaceContact {
     /// The term on `surface` (node indices of `rest`), with stiffness bounds for a body
@@ -91,12 +117,94 @@ impl SurfaceContact {
                 previous_min_distance: f64::INFINITY,
                 ..Active::default()
             }),
+            rigid: RigidSurfaces::new(Vec::new(), rest.len()),
             spec,
             surface,
             rest,
             bounds,
             bbox_diagonal,
         })
+    }
+
+    /// The term with the meshed obstacles `obstacles` joining the bodies' surface (each an
+    /// obstacle of its own: no pair between two obstacle primitives). Errors: a bad
+    /// obstacle ([`MeshObstacle::validate`]), or one whose triangles intersect a body's at
+    /// the start (naming the obstacle and how many triangle pairs).
+    pub fn with_obstacles(self, obstacles: Vec<MeshObstacle>) -> Result<Self, SolverError> {
+        for o in &obstacles {
+            o.validate()?;
+        }
+        let num_nodes = self.rigid.num_nodes();
+        let rigid = RigidSurfaces::new(obstacles, num_nodes);
+        let bodies = self.spec.node_bodies[..num_nodes]
+            .iter()
+            .max()
+            .map_or(0, |b| b + 1);
+        let mut spec = self.spec;
+        spec.node_bodies.truncate(num_nodes);
+        for k in 0..rigid.obstacles().len() {
+            spec.node_bodies.extend(rigid.range(k).map(|_| bodies + k));
+        }
+        let body_triangles = self
+            .surface
+            .triangles()
+            .iter()
+            .filter(|t| t[0] < num_nodes)
+            .count();
+        let mut triangles = self.surface.triangles()[..body_triangles].to_vec();
+        triangles.extend(rigid.triangles());
+        let surface = ContactSurface::from_triangles(triangles);
+        let mut rest = self.rest;
+        rest.truncate(num_nodes);
+        rest.extend(rigid.start());
+        let crossing = intersecting_triangles(&surface, &rest)
+            .into_iter()
+            .filter(|&[i, j]| (i < body_triangles) != (j < body_triangles))
+            .map(|[i, j]| spec.node_bodies[surface.triangles()[i.max(j)][0]] - bodies)
+            .fold(vec![0usize; rigid.obstacles().len()], |mut count, k| {
+                count[k] += 1;
+                count
+            });
+        if let Some(k) = crossing.iter().position(|&c| c > 0) {
+            return Err(SolverError::InvalidProblem(format!(
+                "meshed obstacle '{}' intersects a body at the start: {} of its triangles cross the body's surface",
+                rigid.obstacles()[k].name, crossing[k]
+            )));
+        }
+        Ok(SurfaceContact {
+            spec,
+            surface,
+            rest,
+            rigid,
+            ..self
+        })
+    }
+
+    /// The meshed obstacles.
+    pub fn obstacles(&self) -> &[MeshObstacle] {
+        self.rigid.obstacles()
+    }
+
+    /// Where every meshed obstacle's vertices stand now (at the latest attempt's level).
+    pub fn placed_obstacles(&self) -> Vec<Vec<Vec3>> {
+        self.rigid.current()
+    }
+
+    /// Drops the pairs between two obstacle primitives (a primitive's nodes are all a body's
+    /// or all an obstacle's).
+    fn drop_rigid_pairs(&self, candidates: &mut Candidates) {
+        if self.rigid.is_empty() {
+            return;
+        }
+        let n = self.rigid.num_nodes();
+        let tris = self.surface.triangles();
+        let edges = self.surface.edges();
+        candidates
+            .point_triangle
+            .retain(|&[p, t]| p < n || tris[t][0] < n);
+        candidates
+            .edge_edge
+            .retain(|&[i, j]| edges[i][0] < n || edges[j][0] < n);
     }
 
     fn filter(&self) -> PairFilter<'_> {
@@ -107,9 +215,12 @@ impl SurfaceContact {
         }
     }
 
-    /// The pairs within `dhat` of each other at `x`.
+    /// The pairs within `dhat` of each other at `x` (all positions, obstacles included).
     fn candidates(&self, x: &[Vec3]) -> Candidates {
-        contact_candidates(&self.surface, x, None, self.spec.dhat, self.filter())
+        let mut candidates =
+            contact_candidates(&self.surface, x, None, self.spec.dhat, self.filter());
+        self.drop_rigid_pairs(&mut candidates);
+        candidates
     }
 
     fn potential(&self) -> BarrierPotential {
@@ -127,9 +238,10 @@ impl SurfaceContact {
     /// the smallest distance keeps shrinking near zero (Li et al. 2020, sec. 4.3); returns
     /// whether the pairs changed (the pattern must then be rebuilt).
     pub fn update(&self, x: &[Vec3]) -> bool {
-        let candidates = self.candidates(x);
+        let x = self.rigid.extend(x);
+        let candidates = self.candidates(&x);
         let min_distance =
-            BarrierPotential::min_distance(&self.surface, &candidates, &self.rest, x);
+            BarrierPotential::min_distance(&self.surface, &candidates, &self.rest, &x);
         let mut active = self.active.write().unwrap_or_else(|e| e.into_inner());
         active.kappa = crate::contact::update_barrier_stiffness(
             active.kappa,
@@ -157,70 +269,149 @@ impl SurfaceContact {
         self.read().candidates.len()
     }
 
-    /// The pairs within `dhat` at `x` with their normal forces at the current stiffness:
-    /// what lagged friction is built from.
+    /// The pairs between body nodes within `dhat` at body positions `x` with their normal
+    /// forces at the current stiffness: what lagged friction is built from (pairs with a
+    /// meshed obstacle have no friction yet).
     pub fn pair_forces(&self, x: &[Vec3]) -> Vec<PairForce> {
+        let n = self.rigid.num_nodes();
+        let full = self.rigid.extend(x);
         self.potential()
-            .pair_forces(&self.surface, &self.candidates(x), &self.rest, x)
+            .pair_forces(&self.surface, &self.candidates(&full), &self.rest, &full)
+            .into_iter()
+            .filter(|f| f.nodes.iter().all(|&v| v < n))
+            .collect()
     }
 
-    /// The smallest distance between two surface primitives within `dhat` at `x` (`+inf`
-    /// when none is that close).
+    /// The smallest distance between two surface primitives within `dhat` at body
+    /// positions `x` (obstacles where they stand now; `+inf` when none is that close).
     pub fn min_distance(&self, x: &[Vec3]) -> f64 {
-        BarrierPotential::min_distance(&self.surface, &self.candidates(x), &self.rest, x)
+        let x = self.rigid.extend(x);
+        BarrierPotential::min_distance(&self.surface, &self.candidates(&x), &self.rest, &x)
     }
 
-    /// The largest step `alpha` in `(0, 1]` along `direction` (three entries per node) from
-    /// `x` that no pair crosses: `0.8` times the earliest time of impact, or 1.
-    pub fn max_step(&self, x: &[Vec3], direction: &[f64]) -> f64 {
-        let x1: Vec<Vec3> = x
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                p + Vec3::new(direction[3 * i], direction[3 * i + 1], direction[3 * i + 2])
-            })
-            .collect();
-        let swept = contact_candidates(&self.surface, x, Some(&x1), 0.0, self.filter());
-        let tris = self.surface.triangles();
-        let edges = self.surface.edges();
-        // A pair whose two sides move less in all than their distance apart cannot touch
-        // over the step (the distance is 1-Lipschitz in each side's motion): no CCD needed.
-        let moves = |n: usize| (x1[n] - x[n]).norm();
-        let cannot_touch = |reach: f64, d_sq: f64| reach * reach < d_sq;
-        let pt = swept.point_triangle.iter().filter_map(|&[p, t]| {
-            let [a, b, c] = tris[t];
-            let reach = moves(p) + moves(a).max(moves(b)).max(moves(c));
-            if cannot_touch(
-                reach,
-                point_triangle_squared_distance(&x[p], &x[a], &x[b], &x[c]),
-            ) {
-                return None;
-            }
-            point_triangle_ccd(
-                &x[p], &x[a], &x[b], &x[c], &x1[p], &x1[a], &x1[b], &x1[c], &self.ccd,
-            )
-        });
-        let ee = swept.edge_edge.iter().filter_map(|&[i, j]| {
-            let ([a0, a1], [b0, b1]) = (edges[i], edges[j]);
-            let reach = moves(a0).max(moves(a1)) + moves(b0).max(moves(b1));
-            if cannot_touch(
-                reach,
-                edge_edge_squared_distance(&x[a0], &x[a1], &x[b0], &x[b1]),
-            ) {
-                return None;
-            }
-            edge_edge_ccd(
-                &x[a0], &x[a1], &x[b0], &x[b1], &x1[a0], &x1[a1], &x1[b0], &x1[b1], &self.ccd,
-            )
-        });
-        match pt
-            .chain(ee)
-            .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))))
-        {
-            None => 1.0,
-            Some(toi) => (TOI_FRACTION * toi).min(1.0),
+    /// The pairs within `dhat`, the smallest distance and the meshed obstacles' forces at
+    /// body positions `x`.
+    pub fn summary(&self, x: &[Vec3]) -> SurfaceContactSummary {
+        SurfaceContactSummary {
+            pairs_within_dhat: self.pairs_within_dhat(x),
+            min_distance: self.min_distance(x),
+            obstacle_forces: self.obstacle_forces(x),
+            body_pair_forces: self.body_pair_forces(x),
         }
     }
+
+    /// The number of bodies (their nodes numbered `0..`, the obstacles' after them).
+    fn num_bodies(&self) -> usize {
+        self.spec.node_bodies[..self.rigid.num_nodes()]
+            .iter()
+            .max()
+            .map_or(0, |b| b + 1)
+    }
+
+    /// For each pair of bodies `(a, b)`, `a < b` (in the order of
+    /// [`SurfaceContactSummary::body_pair_forces`]), the force `b` exerts on `a` at body
+    /// positions `x`: minus the gradient of the pairs between them, summed over `a`'s nodes.
+    pub fn body_pair_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
+        let bodies = self.num_bodies();
+        if bodies < 2 {
+            return Vec::new();
+        }
+        let full = self.rigid.extend(x);
+        let all = self.candidates(&full);
+        let n = self.rigid.num_nodes();
+        let body = |v: usize| self.spec.node_bodies[v];
+        // The index of pair (a, b), a < b, in row-major upper-triangle order.
+        let index = |a: usize, b: usize| a * (2 * bodies - a - 1) / 2 + (b - a - 1);
+        let mut between = vec![Candidates::default(); bodies * (bodies - 1) / 2];
+        let (tris, edges) = (self.surface.triangles(), self.surface.edges());
+        for &[p, t] in &all.point_triangle {
+            let (a, b) = (body(p), body(tris[t][0]));
+            if p < n && tris[t][0] < n && a != b {
+                between[index(a.min(b), a.max(b))]
+                    .point_triangle
+                    .push([p, t]);
+            }
+        }
+        for &[i, j] in &all.edge_edge {
+            let (a, b) = (body(edges[i][0]), body(edges[j][0]));
+            if edges[i][0] < n && edges[j][0] < n && a != b {
+                between[index(a.min(b), a.max(b))].edge_edge.push([i, j]);
+            }
+        }
+        let potential = self.potential();
+        let mut pairs = Vec::with_capacity(between.len());
+        for a in 0..bodies {
+            for b in a + 1..bodies {
+                let candidates = &between[index(a, b)];
+                if candidates.is_empty() {
+                    pairs.push(Vec3::zeros());
+                    continue;
+                }
+                let mut g = vec![0.0; 3 * full.len()];
+                potential.add_gradient(&self.surface, candidates, &self.rest, &full, &mut g);
+                let on_a: Vec3 = (0..n)
+                    .filter(|&v| body(v) == a)
+                    .map(|v| -Vec3::new(g[3 * v], g[3 * v + 1], g[3 * v + 2]))
+                    .sum();
+                pairs.push(on_a);
+            }
+        }
+        pairs
+    }
+
+    /// The number of pairs closer than `dhat` at body positions `x`.
+    pub fn pairs_within_dhat(&self, x: &[Vec3]) -> usize {
+        let x = self.rigid.extend(x);
+        self.potential()
+            .count_within(&self.surface, &self.candidates(&x), &self.rest, &x)
+    }
+
+    /// The force each meshed obstacle exerts on the bodies at body positions `x`: the
+    /// barrier's gradient summed over the obstacle's vertices (the bodies' nodes feel its
+    /// opposite, minus the gradient).
+    pub fn obstacle_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
+        if self.rigid.is_empty() {
+            return Vec::new();
+        }
+        let full = self.rigid.extend(x);
+        let mut g = vec![0.0; 3 * full.len()];
+        self.potential().add_gradient(
+            &self.surface,
+            &self.candidates(&full),
+            &self.rest,
+            &full,
+            &mut g,
+        );
+        (0..self.rigid.obstacles().len())
+            .map(|k| {
+                self.rigid
+                    .range(k)
+                    .map(|i| Vec3::new(g[3 * i], g[3 * i + 1], g[3 * i + 2]))
+                    .sum()
+            })
+            .collect()
+    }
+
+    /// The local indices (of the pair's 12 coordinates) of the pair's degrees of freedom,
+    /// its body nodes' coordinates.
+    fn free_coordinates(&self, nodes: &[usize; 4]) -> impl Iterator<Item = usize> + '_ {
+        let n = self.rigid.num_nodes();
+        let nodes = *nodes;
+        (0..12).filter(move |&l| nodes[l / 3] < n)
+    }
+}
+
+/// Copies the rows and columns `free` of `block` column-major into the front of `out`;
+/// returns the entries written.
+fn copy_free_block(block: &SMatrix<f64, 12, 12>, free: &[usize], out: &mut [f64]) -> usize {
+    let mut written = 0;
+    for &c in free {
+        for &r in free {
+            out[written] = block[(r, c)];
+            written += 1;
+        }
+    }
+    written
 }
 
 impl EnergyTerm for SurfaceContact {
@@ -230,9 +421,13 @@ impl EnergyTerm for SurfaceContact {
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
         let active = self.read();
+        let n = self.rigid.num_nodes();
         BarrierPotential::pair_nodes(&self.surface, &active.candidates, &self.rest)
             .iter()
-            .flat_map(|nodes| block_pattern(nodes).collect::<Vec<_>>())
+            .flat_map(|nodes| {
+                let free: Vec<usize> = nodes.iter().copied().filter(|&v| v < n).collect();
+                block_pattern(&free).collect::<Vec<_>>()
+            })
             .collect()
     }
 
@@ -244,24 +439,37 @@ impl EnergyTerm for SurfaceContact {
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         let potential = self.potential();
+        let body = x;
+        let x = self.rigid.extend(body);
         // With a Hessian, the pattern's pairs (updated at this state); else the trial's own.
         let (guard, own);
         let candidates = if hessian.is_some() {
             guard = self.read();
             &guard.candidates
         } else {
-            own = self.candidates(x);
+            own = self.candidates(&x);
             &own
         };
-        let energy = potential.energy(&self.surface, candidates, &self.rest, x);
+        let energy = potential.energy(&self.surface, candidates, &self.rest, &x);
         if let Some(g) = gradient {
-            potential.add_gradient(&self.surface, candidates, &self.rest, x, g);
+            if self.rigid.is_empty() {
+                potential.add_gradient(&self.surface, candidates, &self.rest, &x, g);
+            } else {
+                // The obstacles' entries are dropped: they are no degrees of freedom.
+                let mut full = vec![0.0; 3 * x.len()];
+                potential.add_gradient(&self.surface, candidates, &self.rest, &x, &mut full);
+                for (gi, fi) in g.iter_mut().zip(&full[..3 * body.len()]) {
+                    *gi += fi;
+                }
+            }
         }
         if let Some(h) = hessian {
-            let blocks = potential.hessian_blocks(&self.surface, candidates, &self.rest, x);
-            for (chunk, (_, block)) in h.chunks_exact_mut(144).zip(&blocks) {
-                // Column-major, as `block_pattern` lists the entries.
-                chunk.copy_from_slice(block.as_slice());
+            let blocks = potential.hessian_blocks(&self.surface, candidates, &self.rest, &x);
+            let mut at = 0;
+            for (nodes, block) in &blocks {
+                // Column-major over the free coordinates, as `block_pattern` lists them.
+                let free: Vec<usize> = self.free_coordinates(nodes).collect();
+                at += copy_free_block(block, &free, &mut h[at..]);
             }
         }
         Ok(energy)

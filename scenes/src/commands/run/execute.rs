@@ -12,7 +12,8 @@ use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::RunResult;
 use crate::resolve::{self, ResolvedScene};
-use isochor_solvers::{Checkpoint, Simulation};
+use isochor_mesh::Vec3;
+use isochor_solvers::{Checkpoint, MeshObstacle, Simulation};
 use std::path::{Path, PathBuf};
 
 /// Runs `scene` into `out`, from the start or from `resume`.
@@ -31,6 +32,7 @@ pub(super) fn execute(
         bodies,
         surface_contact,
         friction,
+        mesh_obstacles,
         notices,
     } = resolve::build(scene)?;
     let mut body = Body::new(&problem, selections, zones);
@@ -48,6 +50,10 @@ pub(super) fn execute(
     if let Some(spec) = surface_contact {
         sim.set_surface_contact(spec)?;
     }
+    let obstacle_surfaces = mesh_obstacles.clone();
+    if !mesh_obstacles.is_empty() {
+        sim.set_mesh_obstacles(mesh_obstacles)?;
+    }
     if let Some(spec) = friction {
         sim.set_friction(spec)?;
     }
@@ -56,7 +62,15 @@ pub(super) fn execute(
         dir.start()?;
     }
     let body_ids = (bodies.parts.len() > 1).then(|| bodies.element_bodies());
-    let frames = frame_writer(scene, out.as_ref(), &sim, &body, zone_ids, body_ids)?;
+    let frames = frame_writer(
+        scene,
+        out.as_ref(),
+        &sim,
+        &body,
+        zone_ids,
+        body_ids,
+        &obstacle_surfaces,
+    )?;
     let mut observer = Observer::new(scene, options, &body, out.as_ref(), frames);
     if let Some(checkpoint) = resume {
         let solver: Checkpoint = (&checkpoint.solver).into();
@@ -93,7 +107,8 @@ fn check_probes_at_rest(scene: &Scene, body: &Body) -> Result<(), SceneError> {
     Ok(())
 }
 
-/// The frame writer of a run into `out` that writes VTU frames, its rest frame written.
+/// The frame writer of a run into `out` that writes VTU frames (and the surfaces of the
+/// meshed `obstacles`), its rest frame written.
 fn frame_writer(
     scene: &Scene,
     out: Option<&OutputDir>,
@@ -101,6 +116,7 @@ fn frame_writer(
     body: &Body,
     zone_ids: Option<Vec<i32>>,
     body_ids: Option<Vec<i32>>,
+    obstacles: &[MeshObstacle],
 ) -> Result<Option<FrameWriter>, SceneError> {
     let (Some(dir), true) = (out, scene.output.vtu) else {
         return Ok(None);
@@ -121,7 +137,18 @@ fn frame_writer(
         region_ids,
     )
     .with_bodies(body_ids)
-    .with_deformed_points(scene.output.points == PointsName::Deformed);
-    w.write(mesh, 0, 0.0, &FrameFields::rest(mesh))?;
+    .with_deformed_points(scene.output.points == PointsName::Deformed)
+    .with_obstacles(
+        obstacles
+            .iter()
+            .map(|o| (o.name.clone(), o.triangles.clone()))
+            .collect(),
+    );
+    let starts: Vec<Vec<Vec3>> = obstacles.iter().map(|o| o.vertices.clone()).collect();
+    let rest = FrameFields {
+        obstacle_positions: &starts,
+        ..FrameFields::rest(mesh)
+    };
+    w.write(mesh, 0, 0.0, &rest)?;
     Ok(Some(w))
 }

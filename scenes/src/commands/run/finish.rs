@@ -2,17 +2,21 @@
 //! and the outputs committed.
 
 use super::body::{Body, ProbedState};
+use super::observer::meshed_obstacles;
 use super::observer::Observer;
 use super::options::RunOptions;
 use super::records::record;
 use crate::error::SceneError;
-use crate::format::{validate, Scene};
+use crate::format::{validate, Scene, SteppingSpec};
 use crate::output::{
-    run_title, write_preview, write_run_outputs, FrameFields, OutputDir, PreviewOptions,
+    obstacle_triangles, run_title, write_preview, write_run_outputs, FrameFields, OutputDir,
+    PreviewOptions,
 };
 use crate::probes;
 use crate::record::{RunResult, StepRecord};
-use isochor_solvers::{RunSummary, SimulationFailure, State, StepReport};
+use crate::resolve::problem;
+use isochor_mesh::{ElementMesh, Vec3};
+use isochor_solvers::{LoadLevel, RunSummary, SimulationFailure, State, StepReport};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -144,6 +148,8 @@ impl Run<'_> {
                 report,
                 inverted,
                 observer.last_energies,
+                None,
+                &meshed_obstacles(scene),
             )
         });
         let constraint_residual = ending.reports.last().map_or(0.0, |r| r.constraint_residual);
@@ -195,6 +201,13 @@ impl Run<'_> {
             history,
             failed,
             dynamic: scene.is_dynamic(),
+            obstacles: scene
+                .obstacles
+                .iter()
+                .enumerate()
+                .map(|(i, o)| o.name(i))
+                .collect(),
+            body_pairs: body_pairs(scene),
         })
     }
 }
@@ -230,6 +243,20 @@ fn warnings(scene: &Scene, history: &[StepRecord], notices: &[String]) -> Vec<St
     warnings
 }
 
+/// The pairs of bodies of `scene` as `a_b`, `a` before `b` in its order (none with one body).
+fn body_pairs(scene: &Scene) -> Vec<String> {
+    let bodies = scene.bodies();
+    let names: Vec<&str> = bodies.iter().map(|b| b.name).collect();
+    if names.len() < 2 {
+        return Vec::new();
+    }
+    names
+        .iter()
+        .enumerate()
+        .flat_map(|(i, a)| names[i + 1..].iter().map(move |b| format!("{a}_{b}")))
+        .collect()
+}
+
 /// Every probe of `scene` as NaN.
 fn nan_probes(scene: &Scene) -> BTreeMap<String, f64> {
     scene.probes.keys().map(|k| (k.clone(), f64::NAN)).collect()
@@ -254,12 +281,40 @@ fn preview(
             stress: &observer.last_stress,
             nodal_pressures: &[],
             contact_forces: &[],
+            obstacle_positions: &[],
         },
         &PreviewOptions {
             field: scene.output.preview_field,
             rest_outline: scene.output.preview_rest,
             gravity: scene.loads.gravity,
             title: &run_title(result),
+            obstacles: &obstacles_at(scene, &body.mesh, observer, state)?,
         },
     )
+}
+
+/// The triangles of every obstacle where it stands at `state`, for the preview: the
+/// analytic shapes tessellated around the rest mesh, the meshed ones as the last accepted
+/// step placed them.
+fn obstacles_at(
+    scene: &Scene,
+    mesh: &ElementMesh,
+    observer: &Observer<'_>,
+    state: &State,
+) -> Result<Vec<[Vec3; 3]>, SceneError> {
+    let level = match scene.stepping {
+        SteppingSpec::Dynamic { dt, frames, .. } => LoadLevel::dynamic(state.t, dt * frames as f64),
+        _ => LoadLevel::quasi_static(state.t),
+    };
+    let around = mesh.corners().bounding_box();
+    let mut triangles = Vec::new();
+    for o in &problem::obstacles(scene)? {
+        let s = level.motion_parameter(o.curve.as_ref());
+        triangles.extend(obstacle_triangles(o, s, around));
+    }
+    for (k, o) in problem::mesh_obstacles(scene)?.iter().enumerate() {
+        let placed = observer.last_obstacles.get(k).unwrap_or(&o.vertices);
+        triangles.extend(o.triangles.iter().map(|t| t.map(|v| placed[v])));
+    }
+    Ok(triangles)
 }

@@ -11,6 +11,7 @@ use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
 use crate::record::StepRecord;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, Energies, Frame};
 use nalgebra::Matrix3;
 use std::io::IsTerminal;
@@ -34,6 +35,8 @@ pub(super) struct Observer<'a> {
     pub last_von_mises: Vec<f64>,
     /// Energies of the last accepted state.
     pub last_energies: Energies,
+    /// Where the meshed obstacles' vertices stood at the last accepted state.
+    pub last_obstacles: Vec<Vec<Vec3>>,
     /// The solver's checkpoint of the last accepted state (with `--checkpoint-every`).
     pub last_solver: Option<Checkpoint>,
     /// Wall time of the run before it was resumed.
@@ -43,6 +46,11 @@ pub(super) struct Observer<'a> {
     pub error: Option<SceneError>,
     start: Instant,
     bar: ProgressBar,
+}
+
+/// Whether each obstacle of `scene` is meshed, in its order.
+pub(super) fn meshed_obstacles(scene: &Scene) -> Vec<bool> {
+    scene.obstacles.iter().map(|o| o.is_mesh()).collect()
 }
 
 impl<'a> Observer<'a> {
@@ -65,6 +73,7 @@ impl<'a> Observer<'a> {
             last_stress: Vec::new(),
             last_von_mises: Vec::new(),
             last_energies: Energies::default(),
+            last_obstacles: Vec::new(),
             last_solver: None,
             earlier_wall_time: 0.0,
             error: None,
@@ -95,6 +104,8 @@ impl<'a> Observer<'a> {
             frame.report,
             frame.inverted_tets,
             frame.energies,
+            frame.surface_contact.as_ref(),
+            &meshed_obstacles(self.scene),
         );
         step.cuts = frame.cuts.iter().map(cut_record).collect();
         step.tracked_probe = self.tracked_probe(frame);
@@ -103,6 +114,7 @@ impl<'a> Observer<'a> {
         self.last_stress.clone_from(&frame.stress);
         self.last_von_mises.clone_from(&frame.von_mises);
         self.last_energies = frame.energies;
+        self.last_obstacles.clone_from(&frame.mesh_obstacles);
         if self.error.is_none() {
             if let Err(e) = self
                 .write_frame(frame)
@@ -162,6 +174,7 @@ impl<'a> Observer<'a> {
             stress: &frame.stress,
             nodal_pressures: frame.nodal_pressures.as_deref().unwrap_or_default(),
             contact_forces: &frame.contact_forces,
+            obstacle_positions: &frame.mesh_obstacles,
         };
         w.write(&self.body.mesh, index, frame.state.t, &fields)
     }

@@ -2,7 +2,7 @@
 
 use crate::record::{ContactRecord, CutRecord, StepRecord};
 use isochor_mesh::ElementMesh;
-use isochor_solvers::{Energies, IterationReport, State, StepReport};
+use isochor_solvers::{Energies, IterationReport, State, StepReport, SurfaceContactSummary};
 
 /// The residual histories of a step: per iteration, then the final one.
 struct Residuals {
@@ -37,13 +37,55 @@ pub(super) fn cut_record(report: &StepReport) -> CutRecord {
     }
 }
 
-/// The record of one step: its iterations and the state it ended in.
+/// The contact record of a step: the analytic obstacles' forces from `report`, the meshed
+/// ones' from `surface` (the barrier contact at the state, if on), merged in the scene's
+/// order (`meshed[i]`: whether obstacle `i` is meshed; zeros for a meshed obstacle without
+/// a summary), and their total.
+fn contact_record(
+    report: &StepReport,
+    surface: Option<&SurfaceContactSummary>,
+    meshed: &[bool],
+) -> ContactRecord {
+    let mut analytic = report.contact.obstacle_forces.iter();
+    let mut barrier = surface.map(|s| s.obstacle_forces.iter());
+    let obstacle_forces: Vec<[f64; 3]> = meshed
+        .iter()
+        .map(|&m| {
+            let next = if m {
+                barrier.as_mut().and_then(Iterator::next)
+            } else {
+                analytic.next()
+            };
+            next.map_or([0.0; 3], |&f| f.into())
+        })
+        .collect();
+    let meshed_total = surface.map_or(isochor_mesh::Vec3::zeros(), |s| {
+        s.obstacle_forces.iter().sum()
+    });
+    ContactRecord {
+        force: (report.contact.force + meshed_total).into(),
+        obstacle_forces,
+        active_vertices: report.contact.active_vertices,
+        max_penetration: report.contact.max_penetration,
+        iterations: report.contact_iterations,
+        pairs: surface.map_or(0, |s| s.pairs_within_dhat),
+        min_distance: surface.map(|s| s.min_distance).filter(|d| d.is_finite()),
+        body_pair_forces: surface.map_or_else(Vec::new, |s| {
+            s.body_pair_forces.iter().map(|&f| f.into()).collect()
+        }),
+    }
+}
+
+/// The record of one step: its iterations and the state it ended in (`surface` and
+/// `meshed` as in [`contact_record`]).
 pub(super) fn record(
     mesh: &ElementMesh,
     state: &State,
     report: &StepReport,
     inverted_tets: usize,
     energies: Energies,
+    surface: Option<&SurfaceContactSummary>,
+    meshed: &[bool],
 ) -> StepRecord {
     let residuals = Residuals::of(report);
     StepRecord {
@@ -67,17 +109,6 @@ pub(super) fn record(
         external_energy: energies.external,
         wall_time_s: report.wall_time.as_secs_f64(),
         tracked_probe: None,
-        contact: ContactRecord {
-            force: report.contact.force.into(),
-            obstacle_forces: report
-                .contact
-                .obstacle_forces
-                .iter()
-                .map(|&f| f.into())
-                .collect(),
-            active_vertices: report.contact.active_vertices,
-            max_penetration: report.contact.max_penetration,
-            iterations: report.contact_iterations,
-        },
+        contact: contact_record(report, surface, meshed),
     }
 }
