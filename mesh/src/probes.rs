@@ -166,6 +166,57 @@ pub fn enclosed_volume_ratio(
     Ok(enclosed_volume(mesh, x, faces)? / enclosed_volume(mesh, mesh.nodes(), faces)?)
 }
 
+/// The angle (radians, in `[0, pi]`) of the rotation that best maps the rest positions of
+/// the nodes `nodes` onto their positions in `x`, both about their centroids (Kabsch's
+/// least-squares rotation); about `axis` if given: the signed angle (right-handed about the
+/// axis, in `(-pi, pi]`) that best maps their projections on the plane normal to the axis,
+/// `atan2(sum (a_i x b_i) . n, sum a_i . b_i)`. A bending angle, whatever the translation.
+/// Fails for an empty node set, a node out of range, or a zero axis.
+pub fn rotation_angle(
+    mesh: &ElementMesh,
+    x: &[Vec3],
+    nodes: &[usize],
+    axis: Option<Vec3>,
+) -> Result<f64, MeshError> {
+    check_positions(mesh, x)?;
+    let rest = mesh.nodes();
+    if nodes.is_empty() || nodes.iter().any(|&v| v >= rest.len()) {
+        return Err(MeshError::parameter(
+            "nodes",
+            nodes.len(),
+            "the node set is empty or names a node out of range",
+        ));
+    }
+    let count = nodes.len() as f64;
+    let centroid = |p: &[Vec3]| nodes.iter().map(|&v| p[v]).sum::<Vec3>() / count;
+    let (c0, c1) = (centroid(rest), centroid(x));
+    let pairs = nodes.iter().map(|&v| (rest[v] - c0, x[v] - c1));
+    match axis {
+        Some(axis) => {
+            let n = axis.try_normalize(0.0).ok_or_else(|| {
+                MeshError::parameter("axis", 0, "the rotation axis must not be zero")
+            })?;
+            let flat = |a: Vec3| a - n * n.dot(&a);
+            let (sin, cos) = pairs.fold((0.0, 0.0), |(s, c), (a, b)| {
+                let (a, b) = (flat(a), flat(b));
+                (s + a.cross(&b).dot(&n), c + a.dot(&b))
+            });
+            Ok(sin.atan2(cos))
+        }
+        None => {
+            let h: nalgebra::Matrix3<f64> = pairs.map(|(a, b)| a * b.transpose()).sum();
+            let svd = h.svd(true, true);
+            let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
+                return Err(MeshError::parameter("nodes", nodes.len(), "no best-fit rotation"));
+            };
+            let mut d = nalgebra::Matrix3::identity();
+            d[(2, 2)] = (v_t.transpose() * u.transpose()).determinant().signum();
+            let r = v_t.transpose() * d * u.transpose();
+            Ok(((r.trace() - 1.0) / 2.0).clamp(-1.0, 1.0).acos())
+        }
+    }
+}
+
 /// Barycentric coordinates of `p` in rest tet `e`.
 fn barycentric(mesh: &TetMesh, e: usize, p: &Vec3) -> [f64; 4] {
     let t = mesh.tets()[e];

@@ -67,8 +67,15 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
     let mut out = String::from(
         "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts\n",
     );
+    // Then `pressure_k,enclosed_volume_ratio_k` for every pressure load k.
+    let loads = history.iter().map(|s| s.pressure_loads.len()).max().unwrap_or(0);
+    out.pop();
+    for k in 0..loads {
+        let _ = write!(out, ",pressure_{k},enclosed_volume_ratio_{k}");
+    }
+    out.push('\n');
     for s in history {
-        let _ = writeln!(
+        let _ = write!(
             out,
             "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{},{:e},{}",
             s.step,
@@ -94,6 +101,37 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
             s.increment,
             s.cuts.len()
         );
+        for k in 0..loads {
+            let r = s.pressure_loads.get(k);
+            let (p, v) = r.map_or((f64::NAN, f64::NAN), |r| (r.pressure, r.volume_ratio));
+            let _ = write!(out, ",{p:e},{v:e}");
+        }
+        out.push('\n');
+    }
+    write_file(path, out.as_bytes())
+}
+
+/// `probes.csv`: every probe of the scene at every accepted step: `step`, `t`, `load_level`
+/// (the load scale of a load without a curve: `t` in quasi-static stepping, 1 in dynamics)
+/// and one column per probe, in name order (NaN where a probe cannot be evaluated).
+pub fn write_probes_csv(
+    path: &Path,
+    history: &[StepRecord],
+    dynamic: bool,
+) -> Result<(), SceneError> {
+    let names: Vec<&String> = history.last().map_or(Vec::new(), |s| s.probes.keys().collect());
+    let mut out = String::from("step,t,load_level");
+    for name in &names {
+        let _ = write!(out, ",{name}");
+    }
+    out.push('\n');
+    for s in history {
+        let level = if dynamic { 1.0 } else { s.t };
+        let _ = write!(out, "{},{:e},{level:e}", s.step, s.t);
+        for name in &names {
+            let _ = write!(out, ",{:e}", s.probes.get(*name).copied().unwrap_or(f64::NAN));
+        }
+        out.push('\n');
     }
     write_file(path, out.as_bytes())
 }

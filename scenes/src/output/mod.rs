@@ -15,11 +15,11 @@ mod potential;
 mod preview;
 
 pub use atomic::{write_file, OutputDir, CHECKPOINT_FILE};
-pub use csv::{write_iterations_csv, write_steps_csv};
+pub use csv::{write_iterations_csv, write_probes_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
 pub use marker::{OutputIdentity, MARKER_FILE};
 pub(crate) use plots::{draw_legend, finish_plot, plot_error, range, register_font, tick};
-pub use plots::{plot_energy, plot_residuals};
+pub use plots::{plot_energy, plot_pressure_volume, plot_residuals};
 pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};
 pub use preview::{write_preview, PreviewOptions};
 
@@ -48,9 +48,11 @@ pub fn write_run_outputs(
         .collect();
     write_iterations_csv(&dir.join("iterations.csv"), &attempted)?;
     write_steps_csv(&dir.join("steps.csv"), &result.history)?;
+    write_probes_csv(&dir.join("probes.csv"), &result.history, result.dynamic)?;
     if plots {
         let title = run_title(result);
         plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;
+        plot_pressure_volume(&dir.join("pressure-volume.png"), &title, &result.history)?;
         if result.dynamic {
             plot_energy(&dir.join("energy.png"), &title, &result.history)?;
         }

@@ -339,13 +339,18 @@ impl Model {
                     origin,
                 } => {
                     let volume = EnclosedVolume::new(Faces::new(&mesh, &faces)?, origin);
+                    let k = pressure_gauges.len();
+                    let cavity = Cavity::new(volume.clone(), volume_ratio, curve, mesh.nodes())
+                        .map_err(|e| {
+                            SolverError::InvalidProblem(format!(
+                                "load {l} (pressure load {k}, loads.pressure.{k} of a scene): {}",
+                                message(e)
+                            ))
+                        })?;
                     let row = GaugedPressure::Solved {
                         row: cavities.len(),
                     };
-                    pressure_gauges.push(PressureGauge::new(volume.clone(), row, mesh.nodes()));
-                    let cavity = Cavity::new(volume, volume_ratio, curve, mesh.nodes()).map_err(
-                        |e| SolverError::InvalidProblem(format!("load {l}: {}", message(e))),
-                    )?;
+                    pressure_gauges.push(PressureGauge::new(volume, row, mesh.nodes()));
                     cavities.push(cavity);
                     continue;
                 }

@@ -79,5 +79,7 @@ pub(super) fn record(
             max_penetration: report.contact.max_penetration,
             iterations: report.contact_iterations,
         },
+        pressure_loads: Vec::new(),
+        probes: Default::default(),
     }
 }
