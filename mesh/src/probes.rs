@@ -207,7 +207,11 @@ pub fn rotation_angle(
             let h: nalgebra::Matrix3<f64> = pairs.map(|(a, b)| a * b.transpose()).sum();
             let svd = h.svd(true, true);
             let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
-                return Err(MeshError::parameter("nodes", nodes.len(), "no best-fit rotation"));
+                return Err(MeshError::parameter(
+                    "nodes",
+                    nodes.len(),
+                    "no best-fit rotation",
+                ));
             };
             let mut d = nalgebra::Matrix3::identity();
             d[(2, 2)] = (v_t.transpose() * u.transpose()).determinant().signum();

@@ -9,6 +9,7 @@ mod contact_geometry;
 mod contact_term;
 mod dynamics;
 mod elements;
+mod enclosed_volume;
 mod energies;
 mod extremes;
 mod locking;

@@ -237,12 +237,10 @@ fn conditions(scene: &Scene) -> Result<(), Fault> {
         let key = format!("loads.pressure.{i}");
         selection_defined(scene, format!("{key}.selection"), &p.selection)?;
         match (p.pressure, p.volume_ratio) {
-            (Some(_), Some(_)) => {
-                return Err(fault(
-                    format!("{key}.volume_ratio"),
-                    "give either pressure (a given pressure) or volume_ratio (a held volume), not both",
-                ))
-            }
+            (Some(_), Some(_)) => return Err(fault(
+                format!("{key}.volume_ratio"),
+                "give either pressure (a given pressure) or volume_ratio (a held volume), not both",
+            )),
             (None, None) => {
                 return Err(fault(
                     key,
@@ -330,8 +328,13 @@ fn probes(scene: &Scene) -> Result<(), Fault> {
                     ),
                 ));
             }
-            ProbeSpec::Rotation { axis: Some(a), .. } if a.iter().all(|c| *c == 0.0) || !a.iter().all(|c| c.is_finite()) => {
-                return Err(fault(format!("{key}.axis"), "the axis must be finite and not zero"));
+            ProbeSpec::Rotation { axis: Some(a), .. }
+                if a.iter().all(|c| *c == 0.0) || !a.iter().all(|c| c.is_finite()) =>
+            {
+                return Err(fault(
+                    format!("{key}.axis"),
+                    "the axis must be finite and not zero",
+                ));
             }
             ProbeSpec::RadiusIncrease { selection, .. }
             | ProbeSpec::Rotation { selection, .. }

@@ -68,7 +68,11 @@ pub fn write_steps_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneE
         "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts\n",
     );
     // Then `pressure_k,enclosed_volume_ratio_k` for every pressure load k.
-    let loads = history.iter().map(|s| s.pressure_loads.len()).max().unwrap_or(0);
+    let loads = history
+        .iter()
+        .map(|s| s.pressure_loads.len())
+        .max()
+        .unwrap_or(0);
     out.pop();
     for k in 0..loads {
         let _ = write!(out, ",pressure_{k},enclosed_volume_ratio_{k}");
@@ -119,7 +123,9 @@ pub fn write_probes_csv(
     history: &[StepRecord],
     dynamic: bool,
 ) -> Result<(), SceneError> {
-    let names: Vec<&String> = history.last().map_or(Vec::new(), |s| s.probes.keys().collect());
+    let names: Vec<&String> = history
+        .last()
+        .map_or(Vec::new(), |s| s.probes.keys().collect());
     let mut out = String::from("step,t,load_level");
     for name in &names {
         let _ = write!(out, ",{name}");
@@ -129,7 +135,11 @@ pub fn write_probes_csv(
         let level = if dynamic { 1.0 } else { s.t };
         let _ = write!(out, "{},{:e},{level:e}", s.step, s.t);
         for name in &names {
-            let _ = write!(out, ",{:e}", s.probes.get(*name).copied().unwrap_or(f64::NAN));
+            let _ = write!(
+                out,
+                ",{:e}",
+                s.probes.get(*name).copied().unwrap_or(f64::NAN)
+            );
         }
         out.push('\n');
     }

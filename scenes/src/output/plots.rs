@@ -245,7 +245,11 @@ pub fn plot_pressure_volume(
     title: &str,
     history: &[StepRecord],
 ) -> Result<(), SceneError> {
-    let loads = history.iter().map(|s| s.pressure_loads.len()).max().unwrap_or(0);
+    let loads = history
+        .iter()
+        .map(|s| s.pressure_loads.len())
+        .max()
+        .unwrap_or(0);
     if loads == 0 {
         return Ok(());
     }
@@ -288,7 +292,13 @@ pub fn plot_pressure_volume(
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });
     }
-    finish_plot(&mut chart, &root, SeriesLabelPosition::UpperLeft, true, path)
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::UpperLeft,
+        true,
+        path,
+    )
 }
 
 #[cfg(test)]

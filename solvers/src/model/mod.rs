@@ -29,8 +29,8 @@ pub mod pressure_gauges;
 pub mod regions;
 mod stacked;
 
-use densities::elastic_density;
 use cavities::{Cavities, Cavity};
+use densities::elastic_density;
 use dofs::Dofs;
 use pressure_gauges::{GaugedPressure, PressureGauge, PressureReading};
 use regions::Regions;
@@ -325,13 +325,18 @@ impl Model {
                     pressure,
                     origin,
                 } => {
-                    let volume = EnclosedVolume::new(Faces::new(&mesh, &faces)?, origin);
+                    let faces = Faces::new(&mesh, &faces)?;
                     let given = GaugedPressure::Given {
                         pressure,
                         curve: curve.clone(),
                     };
-                    pressure_gauges.push(PressureGauge::new(volume.clone(), given, mesh.nodes()));
-                    Box::new(FollowerPressure::new(volume, pressure).following(curve))
+                    let volume = EnclosedVolume::new(faces.clone(), origin);
+                    pressure_gauges.push(PressureGauge::new(volume, given, mesh.nodes()));
+                    Box::new(
+                        FollowerPressure::new(faces, pressure)
+                            .about(origin)
+                            .following(curve),
+                    )
                 }
                 Load::Cavity {
                     faces,
@@ -367,8 +372,8 @@ impl Model {
             // Condensed: its folded rows have no multipliers, the cavities' rows do.
             rows.clear();
         }
-        let cavities = (!cavities.is_empty())
-            .then(|| Arc::new(Cavities::new(cavities, mesh.num_elements())));
+        let cavities =
+            (!cavities.is_empty()).then(|| Arc::new(Cavities::new(cavities, mesh.num_elements())));
         if let Some(cavities) = &cavities {
             if scheme == NonlinearScheme::Dual {
                 return Err(SolverError::InvalidProblem(

@@ -67,7 +67,9 @@ impl PressureGauge {
     /// The reading at positions `x`, load `level` and constraint multipliers `multipliers`.
     pub fn read(&self, x: &[Vec3], level: &LoadLevel, multipliers: &[f64]) -> PressureReading {
         let pressure = match &self.pressure {
-            GaugedPressure::Given { pressure, curve } => pressure * level.load_scale(curve.as_ref()),
+            GaugedPressure::Given { pressure, curve } => {
+                pressure * level.load_scale(curve.as_ref())
+            }
             GaugedPressure::Solved { row } => multipliers.get(*row).copied().unwrap_or(f64::NAN),
         };
         let volume_ratio = if self.rest != 0.0 {

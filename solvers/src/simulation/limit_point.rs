@@ -38,28 +38,30 @@ impl PressureHistory {
     /// The limit-point error of the first given pressure whose slope along the accepted
     /// steps has fallen below [`LIMIT_SLOPE_FRACTION`] of its largest (or turned), if any.
     pub fn limit_point(&self) -> Option<SolverError> {
-        (0..self.given.len()).filter(|&k| self.given[k]).find_map(|k| {
-            let slopes: Vec<f64> = self
-                .readings
-                .windows(2)
-                .filter_map(|w| {
-                    let (a, b) = (w[0][k], w[1][k]);
-                    let dv = b.volume_ratio - a.volume_ratio;
-                    (dv != 0.0 && (b.pressure - a.pressure).abs() > 0.0)
-                        .then(|| (b.pressure - a.pressure) / dv)
-                })
-                .collect();
-            let largest = slopes.iter().copied().fold(0.0, f64::max);
-            let last = *slopes.last()?;
-            let reached = self.readings.last()?[k];
-            (slopes.len() >= 2 && largest > 0.0 && last < LIMIT_SLOPE_FRACTION * largest).then(
-                || SolverError::PressureLimitPoint {
-                    load: k,
-                    pressure: reached.pressure,
-                    volume_ratio: reached.volume_ratio,
-                    slope_fraction: last / largest,
-                },
-            )
-        })
+        (0..self.given.len())
+            .filter(|&k| self.given[k])
+            .find_map(|k| {
+                let slopes: Vec<f64> = self
+                    .readings
+                    .windows(2)
+                    .filter_map(|w| {
+                        let (a, b) = (w[0][k], w[1][k]);
+                        let dv = b.volume_ratio - a.volume_ratio;
+                        (dv != 0.0 && (b.pressure - a.pressure).abs() > 0.0)
+                            .then(|| (b.pressure - a.pressure) / dv)
+                    })
+                    .collect();
+                let largest = slopes.iter().copied().fold(0.0, f64::max);
+                let last = *slopes.last()?;
+                let reached = self.readings.last()?[k];
+                (slopes.len() >= 2 && largest > 0.0 && last < LIMIT_SLOPE_FRACTION * largest).then(
+                    || SolverError::PressureLimitPoint {
+                        load: k,
+                        pressure: reached.pressure,
+                        volume_ratio: reached.volume_ratio,
+                        slope_fraction: last / largest,
+                    },
+                )
+            })
     }
 }

@@ -186,7 +186,9 @@ impl Simulation {
     fn constraint_energy(&self, state: &State) -> f64 {
         let p = &state.multipliers;
         match (&self.model.constraints, &self.model.augmented) {
-            (Some(c), _) if p.len() == c.num_constraints() && self.model.method != Method::Condensed => {
+            (Some(c), _)
+                if p.len() == c.num_constraints() && self.model.method != Method::Condensed =>
+            {
                 0.5 * c
                     .compliance()
                     .nonzero_entries()

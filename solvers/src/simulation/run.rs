@@ -80,7 +80,11 @@ impl Simulation {
         let mut max_inverted = self.model.mesh.count_inverted(&self.state.positions);
         let mut cuts: Vec<StepReport> = Vec::new();
         let mut pressures = PressureHistory::new(
-            self.model.pressure_gauges.iter().map(|g| g.is_given()).collect(),
+            self.model
+                .pressure_gauges
+                .iter()
+                .map(|g| g.is_given())
+                .collect(),
             self.pressure_readings(&self.state, stepper.level_at(&progress)),
         );
         while !stepper.finished(&progress) {
@@ -113,7 +117,15 @@ impl Simulation {
             max_inverted = max_inverted.max(inverted);
             let readings = self.pressure_readings(&self.state, attempt.level);
             pressures.push(readings.clone());
-            observer(&self.frame(step, attempt.frame, progress, inverted, report, &cuts, readings));
+            observer(&self.frame(
+                step,
+                attempt.frame,
+                progress,
+                inverted,
+                report,
+                &cuts,
+                readings,
+            ));
             cuts.clear();
         }
         Ok(RunSummary {

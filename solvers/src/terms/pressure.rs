@@ -7,7 +7,7 @@
 //! normal, so a positive pressure pushes into the body (into the wall of a chamber: the
 //! chamber inflates).
 
-use super::{EnclosedVolume, EnergyTerm};
+use super::{EnclosedVolume, EnergyTerm, Faces};
 use crate::error::SolverError;
 use crate::problem::schedule::{Curve, LoadLevel};
 use isochor_mesh::Vec3;
@@ -21,13 +21,20 @@ pub struct FollowerPressure {
 }
 
 impl FollowerPressure {
-    /// Pressure `pressure` on the faces of `volume` (body-outward orientation).
-    pub fn new(volume: EnclosedVolume, pressure: f64) -> Self {
+    /// Pressure `pressure` on `faces` (body-outward orientation), its potential the cone
+    /// volume about the origin of coordinates.
+    pub fn new(faces: Faces, pressure: f64) -> Self {
         FollowerPressure {
-            volume,
+            volume: EnclosedVolume::new(faces, Vec3::zeros()),
             pressure,
             curve: None,
         }
+    }
+
+    /// The same pressure, its potential the cone volume about `origin`.
+    pub fn about(self, origin: Vec3) -> Self {
+        let volume = EnclosedVolume::new(self.volume.faces().clone(), origin);
+        FollowerPressure { volume, ..self }
     }
 
     /// The same pressure scaled by `curve` (`None`: the default ramp).
