@@ -17,6 +17,7 @@ mod newton;
 mod orderings;
 mod quadratic;
 mod reference;
+mod shell;
 mod stepping;
 mod stresses;
 mod surface_contact_term;

@@ -54,7 +54,7 @@ pub use cushion::{cushion, cushion_counts, CUSHION_SIZE};
 pub use cylinder::{cylinder, cylinder_counts, cylinder_surface, puck};
 pub use finger::{finger, finger_counts, FINGER_SIZE};
 pub use grid::{box_grid, box_grid_counts};
-pub use shell::{shell_octant, shell_octant_counts, shell_surface};
+pub use shell::{shell_octant, shell_octant_counts, shell_octant_quadratic};
 pub use spine::{spine_arm, spine_arm_counts, SPINE_SIZE};
 pub use torso::{torso, torso_counts, TORSO_CROTCH, TORSO_HEIGHT, TORSO_WAIST};
 pub use tube::{tube, tube_counts, tube_surface, TubeMesh};

@@ -1,8 +1,9 @@
 //! Octants of spherical shells: the part `x, y, z >= 0` of the shell between two spheres
 //! about the origin, for inflation with symmetry conditions on the three coordinate planes.
 
-use super::{positive, resolution, Wall};
-use crate::{MeshError, TetMesh, Vec3};
+use super::{positive, resolution};
+use crate::element::TetElement;
+use crate::{ElementMesh, MeshError, TetMesh, Vec3};
 
 /// Largest accepted `res` and `layers`.
 const MAX_RES: usize = 256;
@@ -16,7 +17,7 @@ const MAX_RES: usize = 256;
 /// 3 tets, the diagonal of each side face running from the higher-numbered bottom vertex
 /// to the lower-numbered top one, so that neighbouring prisms agree: `3 res^2 layers` tets.
 /// The faces on the coordinate planes are flat; those on the spheres are polygons
-/// ([`shell_surface`] curves the 10-node mesh's).
+/// ([`shell_octant_quadratic`] curves them).
 pub fn shell_octant(
     inner: f64,
     outer: f64,
@@ -43,8 +44,9 @@ pub fn shell_octant(
     let mut flat = Vec::with_capacity(per_layer);
     for i in 0..=res {
         for j in 0..=res - i {
-            let (a, b) = (i as f64 / res as f64, j as f64 / res as f64);
-            flat.push(Vec3::new(a, b, 1.0 - a - b).normalize());
+            // Integers first, so that the points on a coordinate plane lie on it exactly.
+            let c = [i, j, res - i - j].map(|k| k as f64 / res as f64);
+            flat.push(Vec3::from(c).normalize());
         }
     }
     debug_assert_eq!(flat.len(), per_layer);
@@ -92,18 +94,26 @@ fn positively_oriented(x: &[Vec3], tet: [usize; 4]) -> [usize; 4] {
     }
 }
 
-/// The true surfaces of a [`shell_octant`] for [`crate::ElementMesh::quadratic_on_surface`]:
-/// the mid-edge node of an edge with both ends on one of the two spheres goes to the radial
-/// projection of its midpoint onto that sphere.
-pub fn shell_surface(
+/// The 10-node [`shell_octant`]: every mid-edge node `[a, b]` placed by the shell's own
+/// spherical map, at the mean radius of `a` and `b` in the direction of the sum of their
+/// directions. Boundary edges on a sphere get their mid-edge node on it, edges on a
+/// coordinate plane keep it there, and the interior edges are curved alike, so no element
+/// folds (moving only the boundary's mid-edge nodes folds the flat tets of a thin wall).
+pub fn shell_octant_quadratic(
     inner: f64,
     outer: f64,
-) -> impl Fn(&Vec3, &Vec3) -> Option<Vec3> + Copy + Send + Sync {
-    move |a, b| {
-        Wall::Sphere(inner)
-            .midpoint(a, b)
-            .or_else(|| Wall::Sphere(outer).midpoint(a, b))
+    res: usize,
+    layers: usize,
+) -> Result<ElementMesh, MeshError> {
+    let straight = ElementMesh::quadratic(shell_octant(inner, outer, res, layers)?);
+    let mut nodes = straight.nodes().to_vec();
+    let first = straight.num_vertices();
+    for (k, &[a, b]) in straight.mid_edges().iter().enumerate() {
+        let (xa, xb) = (nodes[a], nodes[b]);
+        let radius = 0.5 * (xa.norm() + xb.norm());
+        nodes[first + k] = radius * (xa.normalize() + xb.normalize()).normalize();
     }
+    ElementMesh::from_nodes(TetElement::Tet10, nodes, straight.connectivity().to_vec())
 }
 
 /// The vertex and tet counts of [`shell_octant`] at `res` and `layers`, without generating it.
@@ -128,5 +138,18 @@ mod tests {
         assert_eq!((mesh.num_vertices() as f64, mesh.num_tets() as f64), (v, t));
         assert!(mesh.rest_volumes().iter().all(|v| *v > 0.0));
         assert!(shell_octant(1.2, 1.0, 3, 2).is_err());
+        for p in mesh.positions() {
+            let on_planes = p.iter().filter(|c| **c == 0.0).count();
+            let near_planes = p.iter().filter(|c| c.abs() < 1e-9).count();
+            assert_eq!(on_planes, near_planes, "{p}");
+        }
+        let curved = shell_octant_quadratic(1.0, 1.2, 4, 2).unwrap();
+        let on_spheres = curved
+            .nodes()
+            .iter()
+            .filter(|p| (p.norm() - 1.0).abs() < 1e-12 || (p.norm() - 1.2).abs() < 1e-12)
+            .count();
+        // Per sphere: 15 vertices and 30 mid-edge nodes of its 16 faces.
+        assert_eq!(on_spheres, 2 * (15 + 30));
     }
 }
