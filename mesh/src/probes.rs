@@ -247,6 +247,30 @@ mod tests {
     use crate::generate::box_grid;
 
     #[test]
+    fn rotation_angle_recovers_a_rigid_rotation_and_its_sign_about_an_axis() {
+        let mesh = ElementMesh::linear(
+            box_grid(Vec3::zeros(), Vec3::new(1.0, 0.5, 0.2), [2, 2, 1]).unwrap(),
+        );
+        let nodes: Vec<usize> = (0..mesh.num_nodes()).collect();
+        let axis = Vec3::new(1.0, 2.0, -0.5).normalize();
+        for angle in [0.3, -1.2, 2.9] {
+            let r =
+                nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle);
+            let x: Vec<Vec3> = mesh
+                .nodes()
+                .iter()
+                .map(|p| r * p + Vec3::new(0.5, -1.0, 2.0))
+                .collect();
+            let free = rotation_angle(&mesh, &x, &nodes, None).unwrap();
+            let about = rotation_angle(&mesh, &x, &nodes, Some(-axis)).unwrap();
+            assert!((free - angle.abs()).abs() < 1e-12, "{free} {angle}");
+            assert!((about + angle).abs() < 1e-12, "{about} {angle}");
+        }
+        assert!(rotation_angle(&mesh, mesh.nodes(), &[], None).is_err());
+        assert!(rotation_angle(&mesh, mesh.nodes(), &nodes, Some(Vec3::zeros())).is_err());
+    }
+
+    #[test]
     fn point_displacement_interpolates_linear_fields_exactly() {
         let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [8, 2, 2]).unwrap();
         let mesh = ElementMesh::linear(mesh);

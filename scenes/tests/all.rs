@@ -20,3 +20,4 @@ mod preview;
 mod regions;
 mod study;
 mod surface_contact;
+mod volume_control;

@@ -64,7 +64,11 @@ fn problem(deformed: &Deformed, method: Method, cavity: bool) -> Problem {
         let boundary = mesh.boundary().expect("box boundary");
         loads.push(
             Load::Cavity {
-                faces: boundary.triangles().iter().map(|&[a, b, c]| [a, c, b]).collect(),
+                faces: boundary
+                    .triangles()
+                    .iter()
+                    .map(|&[a, b, c]| [a, c, b])
+                    .collect(),
                 volume_ratio: 1.5,
                 origin: Vec3::new(0.3, -0.2, 1.4),
             }

@@ -10,8 +10,7 @@
 use isochor_mesh::generate::{shell_octant, shell_octant_quadratic};
 use isochor_mesh::{ElementMesh, Vec3};
 use isochor_solvers::{
-    Dirichlet, Load, Material, Method, Motion, Problem, Settings, Simulation,
-    SolverError, Stepping,
+    Dirichlet, Load, Material, Method, Motion, Problem, Settings, Simulation, SolverError, Stepping,
 };
 
 const INNER: f64 = 1.0;
@@ -183,10 +182,18 @@ fn pressure_control_stops_at_the_limit_point_and_says_so() {
     );
     let reached = curve.last().expect("accepted steps")[0].1;
     let top = exact_maximum();
-    eprintln!("reached {reached} of {top} in {} steps: {error:?}", curve.len());
-    assert!(reached > 0.99 * top && reached < 1.001 * top, "{reached} of {top}");
+    eprintln!(
+        "reached {reached} of {top} in {} steps: {error:?}",
+        curve.len()
+    );
+    assert!(
+        reached > 0.99 * top && reached < 1.001 * top,
+        "{reached} of {top}"
+    );
     match error {
-        Some(SolverError::PressureLimitPoint { load: 0, pressure, .. }) => {
+        Some(SolverError::PressureLimitPoint {
+            load: 0, pressure, ..
+        }) => {
             assert_eq!(pressure, reached);
             let message = error.unwrap().to_string();
             assert!(message.contains("volume_ratio"), "{message}");
@@ -202,7 +209,10 @@ fn pressure_control_stops_at_the_limit_point_and_says_so() {
 fn volume_control_equals_pressure_control_below_the_limit_point() {
     let m = mesh(3, 1, true);
     let p = 0.2;
-    let (curve, error) = run(problem(&m, vec![pressure(&m, INNER, p)]), Stepping::quasi_static(4));
+    let (curve, error) = run(
+        problem(&m, vec![pressure(&m, INNER, p)]),
+        Stepping::quasi_static(4),
+    );
     assert!(error.is_none(), "{error:?}");
     let ratio = curve.last().unwrap()[0].0;
     let found = volume_control(&m, ratio, 4).last().unwrap().1;
