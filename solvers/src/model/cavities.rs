@@ -40,7 +40,7 @@ impl Cavity {
             )));
         }
         let enclosed = -volume.value(rest);
-        if !(enclosed > 0.0) {
+        if enclosed.is_nan() || enclosed <= 0.0 {
             return Err(SolverError::InvalidProblem(format!(
                 "volume_ratio: the faces enclose no volume about the origin (rest volume {enclosed:e}; \
                  the faces must line a closed cavity, or one closed by symmetry planes through the origin)"

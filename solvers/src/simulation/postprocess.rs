@@ -15,22 +15,22 @@ use isochor_mesh::Vec3;
 use nalgebra::Matrix3;
 
 impl Simulation {
-    /// What the observer of a run sees after accepted step `index` (ending on `frame`, if
-    /// it ends on one), at the current state with `inverted` inverted tets.
+    /// What the observer of a run sees after the accepted step of `report` (ending on
+    /// `frame`, if it ends on one), at the current state and load `level` with `inverted`
+    /// inverted tets.
     pub(super) fn frame<'a>(
         &'a self,
-        index: usize,
         frame: Option<usize>,
         progress: Progress,
+        level: LoadLevel,
         inverted: usize,
         report: &'a StepReport,
         cuts: &'a [StepReport],
-        pressure_loads: Vec<PressureReading>,
     ) -> Frame<'a> {
         let contact = self.model.contact.as_ref();
         let stress = self.cauchy_stress(&self.state);
         Frame {
-            index,
+            index: report.step,
             frame,
             progress,
             state: &self.state,
@@ -46,7 +46,7 @@ impl Simulation {
             report,
             cuts,
             contact_multipliers: contact.map(|c| c.multipliers()).unwrap_or_default(),
-            pressure_loads,
+            pressure_loads: self.pressure_readings(&self.state, level),
         }
     }
 

@@ -115,17 +115,16 @@ impl Simulation {
             progress = stepper.accept(&progress, &attempt, report.newton_iterations());
             let inverted = self.model.mesh.count_inverted(&self.state.positions);
             max_inverted = max_inverted.max(inverted);
-            let readings = self.pressure_readings(&self.state, attempt.level);
-            pressures.push(readings.clone());
-            observer(&self.frame(
-                step,
+            let frame = self.frame(
                 attempt.frame,
                 progress,
+                attempt.level,
                 inverted,
                 report,
                 &cuts,
-                readings,
-            ));
+            );
+            pressures.push(frame.pressure_loads.clone());
+            observer(&frame);
             cuts.clear();
         }
         Ok(RunSummary {
