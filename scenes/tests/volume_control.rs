@@ -122,6 +122,31 @@ fn a_chamber_held_at_a_volume_reports_its_pressure_at_every_step() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// With `cap_openings`, the tube's two open ends are capped: the volume held is the chamber's
+/// own (about any origin), so a different pressure holds it at 1.2 than without caps (where
+/// the cones from the origin to the openings count in the rest volume).
+#[test]
+fn capped_openings_hold_the_chambers_own_volume() {
+    let dir = scratch("volume-control-capped");
+    let pressure = |keys: &str| {
+        let path = scene(&dir, "inner", keys);
+        let o = isochor(&["run", &path, "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        assert!((json["probes"]["v"].as_f64().unwrap() - 1.2).abs() < 1e-6);
+        json["probes"]["p"].as_f64().unwrap()
+    };
+    let capped = pressure("volume_ratio = 1.2\ncap_openings = true\norigin = [0.3, 0.1, 0.5]");
+    let also_capped = pressure("volume_ratio = 1.2\ncap_openings = true");
+    let open = pressure("volume_ratio = 1.2");
+    assert!(
+        (capped - also_capped).abs() < 1e-6 * capped,
+        "{capped} {also_capped}"
+    );
+    assert!((capped - open).abs() > 0.05 * open, "{capped} {open}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The errors of the keys name the load and the key.
 #[test]
 fn bad_volume_control_is_an_error_naming_the_load_and_key() {

@@ -71,6 +71,7 @@ fn problem(deformed: &Deformed, method: Method, cavity: bool) -> Problem {
                     .collect(),
                 volume_ratio: 1.5,
                 origin: Vec3::new(0.3, -0.2, 1.4),
+                cap_openings: false,
             }
             .into(),
         );

@@ -72,6 +72,7 @@ fn cavity(mesh: &ElementMesh, radius: f64, ratio: f64) -> Load {
         faces: faces_at(mesh, radius),
         volume_ratio: ratio,
         origin: Vec3::zeros(),
+        cap_openings: false,
     }
 }
 
@@ -81,6 +82,7 @@ fn pressure(mesh: &ElementMesh, radius: f64, p: f64) -> Load {
         faces: faces_at(mesh, radius),
         pressure: p,
         origin: Vec3::zeros(),
+        cap_openings: false,
     }
 }
 

@@ -106,6 +106,11 @@ pub struct PressureSpec {
     /// closed faces, a point on the symmetry planes of a cut chamber.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub origin: Option<Vector>,
+    /// Cap every boundary loop of the faces (a chamber's opening) by the fan from its
+    /// centroid (default false: the faces are closed, or closed by symmetry planes through
+    /// `origin`, or their openings are held).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub cap_openings: bool,
     /// Scale over the run (default: the load ramp).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub curve: Option<CurveSpec>,

@@ -141,7 +141,7 @@ impl ConstraintSet for Cavities {
         self.check(x)?;
         let mut start = 0;
         for c in &self.cavities {
-            let len = 3 * c.volume.faces().nodes_per_face() * c.volume.faces().len();
+            let len = c.volume.gradient_len();
             let block = &mut out[start..start + len];
             block.fill(0.0);
             c.volume.evaluate(x, 1.0, Some(block), None);
@@ -166,8 +166,7 @@ impl ConstraintSet for Cavities {
         self.check(x)?;
         let mut start = 0;
         for (c, p) in self.cavities.iter().zip(multipliers) {
-            let n = c.volume.faces().nodes_per_face();
-            let len = 9 * n * n * c.volume.faces().len();
+            let len = c.volume.hessian_len();
             c.volume
                 .evaluate(x, *p, None, Some(&mut out[start..start + len]));
             start += len;

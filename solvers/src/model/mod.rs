@@ -125,6 +125,24 @@ fn inverse_diagonal(set: &dyn ConstraintSet) -> Result<Vec<f64>, SolverError> {
         .collect())
 }
 
+/// `volume` with its openings capped if `cap`, the error naming load `l`, pressure load `k`.
+fn enclosed(
+    volume: EnclosedVolume,
+    cap: bool,
+    l: usize,
+    k: usize,
+) -> Result<EnclosedVolume, SolverError> {
+    if !cap {
+        return Ok(volume);
+    }
+    volume.capped().map_err(|e| {
+        SolverError::InvalidProblem(format!(
+            "load {l} (pressure load {k}, loads.pressure.{k}.cap_openings of a scene): {}",
+            message(e)
+        ))
+    })
+}
+
 /// The message of a problem error (without its `invalid problem:` prefix).
 fn message(e: SolverError) -> String {
     match e {
@@ -324,27 +342,27 @@ impl Model {
                     faces,
                     pressure,
                     origin,
+                    cap_openings,
                 } => {
                     let faces = Faces::new(&mesh, &faces)?;
+                    let k = pressure_gauges.len();
+                    let volume = enclosed(EnclosedVolume::new(faces, origin), cap_openings, l, k)?;
                     let given = GaugedPressure::Given {
                         pressure,
                         curve: curve.clone(),
                     };
-                    let volume = EnclosedVolume::new(faces.clone(), origin);
-                    pressure_gauges.push(PressureGauge::new(volume, given, mesh.nodes()));
-                    Box::new(
-                        FollowerPressure::new(faces, pressure)
-                            .about(origin)
-                            .following(curve),
-                    )
+                    pressure_gauges.push(PressureGauge::new(volume.clone(), given, mesh.nodes()));
+                    Box::new(FollowerPressure::on(volume, pressure).following(curve))
                 }
                 Load::Cavity {
                     faces,
                     volume_ratio,
                     origin,
+                    cap_openings,
                 } => {
-                    let volume = EnclosedVolume::new(Faces::new(&mesh, &faces)?, origin);
                     let k = pressure_gauges.len();
+                    let volume = EnclosedVolume::new(Faces::new(&mesh, &faces)?, origin);
+                    let volume = enclosed(volume, cap_openings, l, k)?;
                     let cavity = Cavity::new(volume.clone(), volume_ratio, curve, mesh.nodes())
                         .map_err(|e| {
                             SolverError::InvalidProblem(format!(

@@ -158,6 +158,7 @@ impl ProblemBuilder {
     pub fn pressure(self, faces: impl IntoIterator<Item = [usize; 3]>, pressure: f64) -> Self {
         self.load(Load::Pressure {
             origin: Vec3::zeros(),
+            cap_openings: false,
             faces: faces.into_iter().collect(),
             pressure,
         })
@@ -176,6 +177,7 @@ impl ProblemBuilder {
             faces: faces.into_iter().collect(),
             volume_ratio,
             origin,
+            cap_openings: false,
         })
     }
 

@@ -96,6 +96,9 @@ pub enum Load {
         /// of the faces about it, see [`crate::terms::EnclosedVolume`]): any point for a
         /// closed surface, a point on the symmetry planes of a cut one.
         origin: Vec3,
+        /// Whether each boundary loop of the faces (a chamber's opening) is capped by the fan
+        /// from its centroid ([`crate::terms::Openings`]).
+        cap_openings: bool,
     },
     /// A cavity held at a volume: the faces of a [`Load::Pressure`], its enclosed volume
     /// about `origin` held at `1 + (volume_ratio - 1) s` times the rest volume (`s` the load
@@ -108,6 +111,8 @@ pub enum Load {
         volume_ratio: f64,
         /// The point the enclosed volume is measured about.
         origin: Vec3,
+        /// Whether each boundary loop of the faces is capped by the fan from its centroid.
+        cap_openings: bool,
     },
 }
 

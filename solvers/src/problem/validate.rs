@@ -33,11 +33,13 @@ impl Problem {
                     faces,
                     pressure,
                     origin,
+                    ..
                 } => (&faces[..], pressure.is_finite() && finite(origin)),
                 Load::Cavity {
                     faces,
                     volume_ratio,
                     origin,
+                    ..
                 } => {
                     if !(*volume_ratio > 0.0 && volume_ratio.is_finite()) {
                         return bad(format!(

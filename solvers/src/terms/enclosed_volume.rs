@@ -8,21 +8,58 @@
 //! and Hessian are exact. Used by the follower pressure (its potential) and by the volume
 //! control of a cavity (a constraint row, see docs/scene-format.md#loads).
 
+use super::openings::Openings;
 use super::Faces;
+use crate::error::SolverError;
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, Matrix3};
 
-/// The cone volume of `faces` about `origin`.
+/// The cone volume of `faces` about `origin`, with its openings capped if asked.
 #[derive(Debug, Clone)]
 pub struct EnclosedVolume {
     faces: Faces,
     origin: Vec3,
+    openings: Openings,
 }
 
 impl EnclosedVolume {
     /// The cone volume of `faces` about `origin`.
     pub fn new(faces: Faces, origin: Vec3) -> Self {
-        EnclosedVolume { faces, origin }
+        EnclosedVolume {
+            faces,
+            origin,
+            openings: Openings::default(),
+        }
+    }
+
+    /// The same with every boundary loop of the faces capped by the fan from its centroid
+    /// ([`Openings`]): the volume of a chamber with openings, whatever the origin.
+    ///
+    /// Errors: the faces are not an oriented surface, or a loop cannot be capped.
+    pub fn capped(self) -> Result<Self, SolverError> {
+        let openings = Openings::of(&self.faces)?;
+        Ok(EnclosedVolume { openings, ..self })
+    }
+
+    /// Entries of the gradient buffer of [`EnclosedVolume::evaluate`].
+    pub fn gradient_len(&self) -> usize {
+        3 * self.faces.nodes_per_face() * self.faces.len()
+            + self
+                .openings
+                .loop_nodes()
+                .map(|n| 3 * n.len())
+                .sum::<usize>()
+    }
+
+    /// Entries of the Hessian buffer of [`EnclosedVolume::evaluate`].
+    pub fn hessian_len(&self) -> usize {
+        let n = self.faces.nodes_per_face();
+        9 * n * n * self.faces.len()
+            + self
+                .openings
+                .loop_nodes()
+                .map(|l| 9 * l.len() * l.len())
+                .sum::<usize>()
     }
 
     /// The faces.
@@ -35,23 +72,29 @@ impl EnclosedVolume {
         self.evaluate(x, 1.0, None, None)
     }
 
-    /// `(dof, dof)` of the Hessian entries: one dense `3n x 3n` block per face, column-major
-    /// (the order of [`EnclosedVolume::evaluate`]'s Hessian).
+    /// `(dof, dof)` of the Hessian entries: one dense `3n x 3n` block per face, then one
+    /// per capped loop, column-major (the order of [`EnclosedVolume::evaluate`]'s Hessian).
     pub fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        self.faces.iter().flat_map(super::block_pattern).collect()
-    }
-
-    /// `(node, axis)` DOFs of the gradient, face-major (duplicates where faces share nodes).
-    pub fn gradient_dofs(&self) -> Vec<usize> {
         self.faces
             .iter()
-            .flat_map(|face| face.iter().flat_map(|&v| (0..3).map(move |k| 3 * v + k)))
+            .chain(self.openings.loop_nodes())
+            .flat_map(super::block_pattern)
             .collect()
     }
 
-    /// `s V(x)`; adds `s dV/dx` per face into `gradient` (face-major, `3n` entries per face,
-    /// the order of [`EnclosedVolume::gradient_dofs`]) and writes `s` times the Hessian
-    /// blocks into `hessian` (the order of [`EnclosedVolume::hessian_pattern`]) when asked.
+    /// `(node, axis)` DOFs of the gradient, face-major, then loop-major (duplicates where
+    /// faces share nodes).
+    pub fn gradient_dofs(&self) -> Vec<usize> {
+        self.faces
+            .iter()
+            .chain(self.openings.loop_nodes())
+            .flat_map(|nodes| nodes.iter().flat_map(|&v| (0..3).map(move |k| 3 * v + k)))
+            .collect()
+    }
+
+    /// `s V(x)`; adds `s dV/dx` per face (and capped loop) into `gradient` (the order of
+    /// [`EnclosedVolume::gradient_dofs`]) and writes `s` times the Hessian blocks into
+    /// `hessian` (the order of [`EnclosedVolume::hessian_pattern`]) when asked.
     ///
     /// At a point with position `y = x - o`, tangents `a = dx/dxi`, `b = dx/deta` and shape
     /// values `N`, `G1 = dN/dxi`, `G2 = dN/deta`, the integrand `T = y . (a x b)` has
@@ -121,6 +164,16 @@ impl EnclosedVolume {
                 h[size * f..size * (f + 1)].copy_from_slice(block.as_slice());
             }
         }
+        if !self.openings.is_empty() {
+            let (g_at, h_at) = (3 * n * faces.len(), 9 * n * n * faces.len());
+            volume += self.openings.evaluate(
+                x,
+                self.origin,
+                3.0 * s,
+                gradient.map(|g| &mut g[g_at..]),
+                hessian.map(|h| &mut h[h_at..]),
+            );
+        }
         volume
     }
 
@@ -136,11 +189,10 @@ impl EnclosedVolume {
         let Some(gradient) = gradient else {
             return self.evaluate(x, s, None, hessian);
         };
-        let chunk = 3 * self.faces.nodes_per_face();
-        let mut per_face = vec![0.0; chunk * self.faces.len()];
-        let v = self.evaluate(x, s, Some(&mut per_face), hessian);
-        for (face, local) in self.faces.iter().zip(per_face.chunks_exact(chunk)) {
-            super::scatter(face, local, gradient);
+        let mut local = vec![0.0; self.gradient_len()];
+        let v = self.evaluate(x, s, Some(&mut local), hessian);
+        for (dof, g) in self.gradient_dofs().into_iter().zip(&local) {
+            gradient[dof] += g;
         }
         v
     }

@@ -10,6 +10,7 @@ mod enclosed_volume;
 mod epidermis;
 mod faces;
 mod inertia;
+mod openings;
 mod pressure;
 mod surface_contact;
 
@@ -21,6 +22,7 @@ pub use enclosed_volume::EnclosedVolume;
 pub use epidermis::EpidermisTerm;
 pub use faces::Faces;
 pub use inertia::Inertia;
+pub use openings::Openings;
 pub use pressure::FollowerPressure;
 pub use surface_contact::{SurfaceContact, SurfaceContactSpec};
 

@@ -31,10 +31,14 @@ impl FollowerPressure {
         }
     }
 
-    /// The same pressure, its potential the cone volume about `origin`.
-    pub fn about(self, origin: Vec3) -> Self {
-        let volume = EnclosedVolume::new(self.volume.faces().clone(), origin);
-        FollowerPressure { volume, ..self }
+    /// Pressure `pressure` on the faces of `volume`, its potential `-p` times the volume
+    /// they enclose (about its origin, capped or not).
+    pub fn on(volume: EnclosedVolume, pressure: f64) -> Self {
+        FollowerPressure {
+            volume,
+            pressure,
+            curve: None,
+        }
     }
 
     /// The same pressure scaled by `curve` (`None`: the default ramp).
