@@ -13,6 +13,9 @@ use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, Matrix3};
 use std::collections::HashMap;
 
+/// A directed edge `(a, b)` of a face and its mid-edge node, if any.
+type Edge = (usize, usize, Option<usize>);
+
 /// One boundary loop: its nodes, its corners (local indices) and the weighted node pairs
 /// `(i, j, w_ij)` of `sum_edges integral g x g' ds = sum w_ij p_i x p_j`.
 #[derive(Debug, Clone)]
@@ -35,7 +38,7 @@ impl Openings {
     pub fn of(faces: &Faces) -> Result<Self, SolverError> {
         let quadratic = faces.nodes_per_face() == 6;
         // Directed edges (a, b) with their mid-edge node, by undirected key.
-        let mut edges: HashMap<(usize, usize), Vec<(usize, usize, Option<usize>)>> = HashMap::new();
+        let mut edges: HashMap<(usize, usize), Vec<Edge>> = HashMap::new();
         for face in faces.iter() {
             for k in 0..3 {
                 let (a, b) = (face[k], face[(k + 1) % 3]);
@@ -85,7 +88,7 @@ impl Openings {
         if balance.values().any(|&d| d != 0) {
             return bad("a boundary vertex is not passed through by a loop");
         }
-        let mut by_root: HashMap<usize, Vec<(usize, usize, Option<usize>)>> = HashMap::new();
+        let mut by_root: HashMap<usize, Vec<Edge>> = HashMap::new();
         for &edge in &boundary {
             by_root
                 .entry(root(&mut parent, edge.0))
@@ -163,7 +166,7 @@ impl Openings {
             let mut g = vec![Vec3::zeros(); n];
             let mut gc = Vec3::zeros();
             let mut h = DMatrix::<f64>::zeros(3 * n, 3 * n);
-            let mut add = |h: &mut DMatrix<f64>, a: usize, b: usize, m: Matrix3<f64>| {
+            let add = |h: &mut DMatrix<f64>, a: usize, b: usize, m: Matrix3<f64>| {
                 let mut view = h.fixed_view_mut::<3, 3>(3 * a, 3 * b);
                 view += m;
                 let mut view = h.fixed_view_mut::<3, 3>(3 * b, 3 * a);
