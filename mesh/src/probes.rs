@@ -166,6 +166,61 @@ pub fn enclosed_volume_ratio(
     Ok(enclosed_volume(mesh, x, faces)? / enclosed_volume(mesh, mesh.nodes(), faces)?)
 }
 
+/// The angle (radians, in `[0, pi]`) of the rotation that best maps the rest positions of
+/// the nodes `nodes` onto their positions in `x`, both about their centroids (Kabsch's
+/// least-squares rotation); about `axis` if given: the signed angle (right-handed about the
+/// axis, in `(-pi, pi]`) that best maps their projections on the plane normal to the axis,
+/// `atan2(sum (a_i x b_i) . n, sum a_i . b_i)`. A bending angle, whatever the translation.
+/// Fails for an empty node set, a node out of range, or a zero axis.
+pub fn rotation_angle(
+    mesh: &ElementMesh,
+    x: &[Vec3],
+    nodes: &[usize],
+    axis: Option<Vec3>,
+) -> Result<f64, MeshError> {
+    check_positions(mesh, x)?;
+    let rest = mesh.nodes();
+    if nodes.is_empty() || nodes.iter().any(|&v| v >= rest.len()) {
+        return Err(MeshError::parameter(
+            "nodes",
+            nodes.len(),
+            "the node set is empty or names a node out of range",
+        ));
+    }
+    let count = nodes.len() as f64;
+    let centroid = |p: &[Vec3]| nodes.iter().map(|&v| p[v]).sum::<Vec3>() / count;
+    let (c0, c1) = (centroid(rest), centroid(x));
+    let pairs = nodes.iter().map(|&v| (rest[v] - c0, x[v] - c1));
+    match axis {
+        Some(axis) => {
+            let n = axis.try_normalize(0.0).ok_or_else(|| {
+                MeshError::parameter("axis", 0, "the rotation axis must not be zero")
+            })?;
+            let flat = |a: Vec3| a - n * n.dot(&a);
+            let (sin, cos) = pairs.fold((0.0, 0.0), |(s, c), (a, b)| {
+                let (a, b) = (flat(a), flat(b));
+                (s + a.cross(&b).dot(&n), c + a.dot(&b))
+            });
+            Ok(sin.atan2(cos))
+        }
+        None => {
+            let h: nalgebra::Matrix3<f64> = pairs.map(|(a, b)| a * b.transpose()).sum();
+            let svd = h.svd(true, true);
+            let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
+                return Err(MeshError::parameter(
+                    "nodes",
+                    nodes.len(),
+                    "no best-fit rotation",
+                ));
+            };
+            let mut d = nalgebra::Matrix3::identity();
+            d[(2, 2)] = (v_t.transpose() * u.transpose()).determinant().signum();
+            let r = v_t.transpose() * d * u.transpose();
+            Ok(((r.trace() - 1.0) / 2.0).clamp(-1.0, 1.0).acos())
+        }
+    }
+}
+
 /// Barycentric coordinates of `p` in rest tet `e`.
 fn barycentric(mesh: &TetMesh, e: usize, p: &Vec3) -> [f64; 4] {
     let t = mesh.tets()[e];
@@ -190,6 +245,30 @@ fn check_positions(mesh: &ElementMesh, x: &[Vec3]) -> Result<(), MeshError> {
 mod tests {
     use super::*;
     use crate::generate::box_grid;
+
+    #[test]
+    fn rotation_angle_recovers_a_rigid_rotation_and_its_sign_about_an_axis() {
+        let mesh = ElementMesh::linear(
+            box_grid(Vec3::zeros(), Vec3::new(1.0, 0.5, 0.2), [2, 2, 1]).unwrap(),
+        );
+        let nodes: Vec<usize> = (0..mesh.num_nodes()).collect();
+        let axis = Vec3::new(1.0, 2.0, -0.5).normalize();
+        for angle in [0.3, -1.2, 2.9] {
+            let r =
+                nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle);
+            let x: Vec<Vec3> = mesh
+                .nodes()
+                .iter()
+                .map(|p| r * p + Vec3::new(0.5, -1.0, 2.0))
+                .collect();
+            let free = rotation_angle(&mesh, &x, &nodes, None).unwrap();
+            let about = rotation_angle(&mesh, &x, &nodes, Some(-axis)).unwrap();
+            assert!((free - angle.abs()).abs() < 1e-12, "{free} {angle}");
+            assert!((about + angle).abs() < 1e-12, "{about} {angle}");
+        }
+        assert!(rotation_angle(&mesh, mesh.nodes(), &[], None).is_err());
+        assert!(rotation_angle(&mesh, mesh.nodes(), &nodes, Some(Vec3::zeros())).is_err());
+    }
 
     #[test]
     fn point_displacement_interpolates_linear_fields_exactly() {

@@ -3,9 +3,11 @@
 
 use crate::error::SceneError;
 use crate::format::{ComponentName, EnergyName, ProbeSpec, Reduce, Scene};
-use crate::record::StepRecord;
+use crate::record::{PressureLoadRecord, StepRecord};
 use crate::resolve::Selections;
-use isochor_mesh::probes::{displacement_at, enclosed_volume_ratio, volume_change, volume_ratio};
+use isochor_mesh::probes::{
+    displacement_at, enclosed_volume_ratio, rotation_angle, volume_change, volume_ratio,
+};
 use isochor_mesh::{ElementMesh, TetMesh, Vec3, Zones, TET_FACES};
 use isochor_solvers::Energies;
 use std::collections::{BTreeMap, HashMap};
@@ -79,6 +81,23 @@ impl ProbeError {
 impl From<SceneError> for ProbeError {
     fn from(e: SceneError) -> Self {
         ProbeError::Scene(e)
+    }
+}
+
+/// Pressure load `load` at the last accepted step (at rest before a run: no pressure, the
+/// rest volume).
+fn pressure_load(input: &ProbeInput<'_>, load: usize) -> Result<PressureLoadRecord, ProbeError> {
+    match input.history.last() {
+        None => Ok(PressureLoadRecord {
+            pressure: 0.0,
+            volume_ratio: 1.0,
+        }),
+        Some(step) => step.pressure_loads.get(load).copied().ok_or_else(|| {
+            ProbeError::Message(format!(
+                "pressure load {load} does not exist: the scene has {}",
+                step.pressure_loads.len()
+            ))
+        }),
     }
 }
 
@@ -156,6 +175,14 @@ fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
         }
         ProbeSpec::ChamberVolumeRatio { selection } => {
             enclosed_volume_ratio(mesh, x, selections.faces(selection)?).map_err(message)?
+        }
+        ProbeSpec::LoadPressure { load } => pressure_load(input, *load)?.pressure,
+        ProbeSpec::EnclosedVolumeRatio { load } => pressure_load(input, *load)?.volume_ratio,
+        ProbeSpec::Rotation { selection, axis } => {
+            let axis = axis.map(|[a, b, c]| Vec3::new(a, b, c));
+            rotation_angle(mesh, x, selections.nodes(selection)?, axis)
+                .map_err(message)?
+                .to_degrees()
         }
         ProbeSpec::MinVolumeRatio => volume_ratios(mesh, x).fold(f64::INFINITY, f64::min),
         ProbeSpec::MaxVolumeRatio => volume_ratios(mesh, x).fold(f64::NEG_INFINITY, f64::max),

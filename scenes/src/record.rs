@@ -54,6 +54,22 @@ pub struct StepRecord {
     pub tracked_probe: Option<f64>,
     /// Contact forces of the accepted state (zeros without obstacles).
     pub contact: ContactRecord,
+    /// Every pressure load's pressure and enclosed volume ratio, in the order of
+    /// `[[loads.pressure]]`.
+    #[serde(default)]
+    pub pressure_loads: Vec<PressureLoadRecord>,
+    /// Every probe of the scene at this step, by name (NaN where one cannot be evaluated).
+    #[serde(default)]
+    pub probes: BTreeMap<String, f64>,
+}
+
+/// A pressure load at one step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PressureLoadRecord {
+    /// The pressure (Pa, given or solved for; positive inflates).
+    pub pressure: f64,
+    /// The enclosed volume over the rest volume.
+    pub volume_ratio: f64,
 }
 
 /// An attempted step that failed and was cut.

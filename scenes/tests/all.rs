@@ -21,3 +21,4 @@ mod preview;
 mod regions;
 mod study;
 mod surface_contact;
+mod volume_control;

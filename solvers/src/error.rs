@@ -102,6 +102,19 @@ pub enum SolverError {
         /// The load parameter or time of the attempt.
         t: f64,
     },
+    /// Pressure load `load` met its limit point: past it no equilibrium holds a higher
+    /// given pressure.
+    #[error("pressure load {load} (loads.pressure.{load}) has reached its limit point: no equilibrium holds a pressure much above {pressure:e} Pa (the cavity at {volume_ratio:.4} times its rest volume; the pressure-volume slope along the accepted steps has fallen to {slope_fraction:.3} of its largest), so the increments are being cut in vain; drive the cavity by its volume instead: `volume_ratio = R` in place of `pressure` on that load traces the curve through and past the limit point")]
+    PressureLimitPoint {
+        /// Index of the pressure load (among the pressure loads).
+        load: usize,
+        /// The pressure of the last accepted step.
+        pressure: f64,
+        /// The enclosed volume over the rest volume there.
+        volume_ratio: f64,
+        /// The last pressure-volume slope over the largest.
+        slope_fraction: f64,
+    },
     /// The linear solver failed (its message).
     #[error("linear solver failed: {0}")]
     Linear(String),

@@ -125,6 +125,7 @@ pub use isochor_constraints::NodalCompliance;
 /// The mesh types a [`Problem`] holds and a [`State`] is read on.
 pub use isochor_mesh::{ElementMesh, TetMesh, Vec3, Zones};
 pub use model::dofs::Dofs;
+pub use model::pressure_gauges::PressureReading;
 pub use model::regions::Regions;
 pub use nonlinear::report::{IterationReport, StepReport, Timings};
 pub use problem::builder::ProblemBuilder;

@@ -35,8 +35,11 @@ const NU: f64 = 0.49;
 /// (`mu h` = 1.7e4 N/m to `lambda h` = 8e5 N/m for cells of 0.5 m), so neither hides the other.
 const DT: f64 = 0.01;
 
-/// The unit box of `deformed` clamped at `x = 0`, under gravity and a dead traction on `x = 1`.
-fn problem(deformed: &Deformed, method: Method) -> Problem {
+/// The unit box of `deformed` clamped at `x = 0`, under gravity and a dead traction on `x = 1`;
+/// with `cavity`, its boundary faces turned inside out (enclosing the box's volume) held at
+/// 1.5 times their volume about a point off the box (a row of the volume control of a
+/// cavity, its multiplier the cavity's pressure).
+fn problem(deformed: &Deformed, method: Method, cavity: bool) -> Problem {
     let mesh = deformed.mesh.clone();
     let rest = mesh.positions();
     let on = |v: usize, x: f64| (rest[v].x - x).abs() < 1e-12;
@@ -49,6 +52,30 @@ fn problem(deformed: &Deformed, method: Method) -> Problem {
         .filter(|f| f.iter().all(|&v| on(v, 1.0)))
         .copied()
         .collect();
+    let mut loads = vec![
+        Load::Gravity(Vec3::new(0.0, 0.0, -9.8)).into(),
+        Load::Traction {
+            faces: end,
+            traction: Vec3::new(2e3, 1e3, 0.0),
+        }
+        .into(),
+    ];
+    if cavity {
+        let boundary = mesh.boundary().expect("box boundary");
+        loads.push(
+            Load::Cavity {
+                faces: boundary
+                    .triangles()
+                    .iter()
+                    .map(|&[a, b, c]| [a, c, b])
+                    .collect(),
+                volume_ratio: 1.5,
+                origin: Vec3::new(0.3, -0.2, 1.4),
+                cap_openings: false,
+            }
+            .into(),
+        );
+    }
     Problem {
         method,
         material: Material::from_young_poisson(YOUNG, NU, 1000.0).expect("material"),
@@ -60,14 +87,7 @@ fn problem(deformed: &Deformed, method: Method) -> Problem {
             motion: Motion::Fixed,
             curve: None,
         }],
-        loads: vec![
-            Load::Gravity(Vec3::new(0.0, 0.0, -9.8)).into(),
-            Load::Traction {
-                faces: end,
-                traction: Vec3::new(2e3, 1e3, 0.0),
-            }
-            .into(),
-        ],
+        loads,
         obstacles: Vec::new(),
         mesh: mesh.into(),
     }
@@ -126,8 +146,15 @@ fn block(a: &DMatrix<f64>, b: &DMatrix<f64>, rows: (usize, usize), cols: (usize,
 
 /// Checks the Newton system of `method` at the state `(deformed.x, pressures)` in the first
 /// step of `stepping`.
-fn check(deformed: &Deformed, pressures: &[f64], method: Method, stepping: Stepping) -> Errors {
-    let mut sim = Simulation::new(problem(deformed, method), Settings::default()).expect("model");
+fn check(
+    deformed: &Deformed,
+    pressures: &[f64],
+    method: Method,
+    stepping: Stepping,
+    cavity: bool,
+) -> Errors {
+    let problem = problem(deformed, method, cavity);
+    let mut sim = Simulation::new(problem, Settings::default()).expect("model");
     let mu = YOUNG / (2.0 * (1.0 + NU));
     let trial = State {
         positions: deformed.x.clone(),
@@ -204,12 +231,17 @@ fn check(deformed: &Deformed, pressures: &[f64], method: Method, stepping: Stepp
 const CASES: u32 = 4;
 
 /// Checks `method` at one random state, quasi-static (load 1/2) and implicit Euler.
-fn property(method: Method, deformed: &Deformed, pressures: &[f64]) -> Result<(), TestCaseError> {
+fn property(
+    method: Method,
+    deformed: &Deformed,
+    pressures: &[f64],
+    cavity: bool,
+) -> Result<(), TestCaseError> {
     for stepping in [
         Stepping::quasi_static(2),
         Stepping::ImplicitEuler { dt: DT, frames: 1 },
     ] {
-        let errors = check(deformed, pressures, method, stepping);
+        let errors = check(deformed, pressures, method, stepping, cavity);
         eprintln!("{method} {stepping:?}: {errors}");
         prop_assert!(errors.max() < TOLERANCE, "{method} {stepping:?}: {errors}");
     }
@@ -231,48 +263,58 @@ proptest! {
     /// Displacement-only Newton: `K_ff` and `K_fc` of the neo-Hookean energy.
     #[test]
     fn standard_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::Standard, &deformed, &p)?;
+        property(Method::Standard, &deformed, &p, false)?;
     }
 
     /// Nodal pressures, linear measure: `K + K_g`, `G`, consistent `-C`.
     #[test]
     fn mixed_p1_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::MixedP1, &deformed, &p)?;
+        property(Method::MixedP1, &deformed, &p, false)?;
     }
 
     /// Element pressures, linear measure.
     #[test]
     fn mixed_p0_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::MixedP0, &deformed, &p)?;
+        property(Method::MixedP0, &deformed, &p, false)?;
     }
 
     /// Nodal pressures, logarithmic measure (sec. 6).
     #[test]
     fn mixed_p1_log_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::MixedP1Log, &deformed, &p)?;
+        property(Method::MixedP1Log, &deformed, &p, false)?;
     }
 
     /// Element pressures, logarithmic measure.
     #[test]
     fn mixed_p0_log_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::MixedP0Log, &deformed, &p)?;
+        property(Method::MixedP0Log, &deformed, &p, false)?;
     }
 
     /// Static condensation (eq. 37): the folded constraints with zero multipliers.
     #[test]
     fn condensed_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::Condensed, &deformed, &p)?;
+        property(Method::Condensed, &deformed, &p, false)?;
     }
 
     /// The primal problem of dual ascent (eq. 39) at random multipliers, augmented (sec. 8.3).
     #[test]
     fn dual_inner_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::Dual, &deformed, &p)?;
+        property(Method::Dual, &deformed, &p, false)?;
     }
 
     /// F-bar energy under one global zone constraint (`C = 0`).
     #[test]
     fn zonal_system_matches_finite_differences((deformed, p) in state()) {
-        property(Method::Zonal, &deformed, &p)?;
+        property(Method::Zonal, &deformed, &p, false)?;
+    }
+
+    /// A volume-controlled cavity's row (the cone volume about an origin off the body) with
+    /// the methods it joins: alone (standard, condensed: saddle-point Newton on that row),
+    /// after the nodal rows (mixed-p1), after the zone's (zonal).
+    #[test]
+    fn systems_with_a_cavity_match_finite_differences((deformed, p) in state()) {
+        for method in [Method::Standard, Method::Condensed, Method::MixedP1, Method::Zonal] {
+            property(method, &deformed, &p, true)?;
+        }
     }
 }

@@ -112,7 +112,12 @@ impl Bounds {
             | ProbeSpec::MinVolumeRatio
             | ProbeSpec::MaxVolumeRatio
             | ProbeSpec::RunVolumeRatio { .. }
+            | ProbeSpec::EnclosedVolumeRatio { .. }
             | ProbeSpec::PressureVolumeMismatch => self.volume(),
+            // A pressure and an angle: relative.
+            ProbeSpec::LoadPressure { .. } | ProbeSpec::Rotation { .. } => {
+                Tolerance::relative(self.relative, 0.0)
+            }
             // Counts: exact.
             ProbeSpec::InvertedTets
             | ProbeSpec::FirstContact

@@ -88,14 +88,29 @@ pub struct TractionSpec {
     pub curve: Option<CurveSpec>,
 }
 
-/// A follower pressure (Pa, positive pushes into the body) on the boundary faces of a selection.
+/// A follower pressure (Pa, positive pushes into the body) on the boundary faces of a
+/// selection, given (`pressure`) or solved for to hold the cavity the faces line at a volume
+/// (`volume_ratio`); exactly one of the two.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct PressureSpec {
     /// The selection whose boundary faces are loaded.
     pub selection: String,
     /// Pressure (Pa).
-    pub pressure: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+    /// The cavity's volume over its rest volume at full load, its pressure the unknown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub volume_ratio: Option<f64>,
+    /// The point the enclosed volume is measured about (default the origin): any point for
+    /// closed faces, a point on the symmetry planes of a cut chamber.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub origin: Option<Vector>,
+    /// Cap every boundary loop of the faces (a chamber's opening) by the fan from its
+    /// centroid (default false: the faces are closed, or closed by symmetry planes through
+    /// `origin`, or their openings are held).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub cap_openings: bool,
     /// Scale over the run (default: the load ramp).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub curve: Option<CurveSpec>,

@@ -84,6 +84,29 @@ pub enum ProbeSpec {
         /// The selection of faces (e.g. `physical = "chamber"`).
         selection: String,
     },
+    /// The pressure of pressure load `load` (its index in `loads.pressure`, from 0): given
+    /// (times its load scale) or solved for (`volume_ratio`), positive inflating; 0 at rest.
+    LoadPressure {
+        /// The pressure load's index.
+        load: usize,
+    },
+    /// The volume the faces of pressure load `load` enclose about its origin over their rest
+    /// one (1 at rest).
+    EnclosedVolumeRatio {
+        /// The pressure load's index.
+        load: usize,
+    },
+    /// The angle, in degrees, of the rotation that best maps the rest positions of the nodes
+    /// of a selection onto their deformed ones (about their centroids; Kabsch's least-squares
+    /// rotation, in `[0, 180]`), or the signed angle about `axis` if given (right-handed):
+    /// a bending angle.
+    Rotation {
+        /// The selection whose nodes are measured.
+        selection: String,
+        /// The rotation axis (default: the best-fit rotation's own).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        axis: Option<Vector>,
+    },
     /// Mean increase of the distance from an axis of the vertices of a selection.
     RadiusIncrease {
         /// The selection whose vertices are measured.

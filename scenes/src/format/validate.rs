@@ -310,7 +310,30 @@ fn conditions(scene: &Scene) -> Result<(), Fault> {
         selection_defined(scene, format!("loads.traction.{i}.selection"), &t.selection)?;
     }
     for (i, p) in scene.loads.pressure.iter().enumerate() {
-        selection_defined(scene, format!("loads.pressure.{i}.selection"), &p.selection)?;
+        let key = format!("loads.pressure.{i}");
+        selection_defined(scene, format!("{key}.selection"), &p.selection)?;
+        match (p.pressure, p.volume_ratio) {
+            (Some(_), Some(_)) => return Err(fault(
+                format!("{key}.volume_ratio"),
+                "give either pressure (a given pressure) or volume_ratio (a held volume), not both",
+            )),
+            (None, None) => {
+                return Err(fault(
+                    key,
+                    "give pressure (Pa) or volume_ratio (the cavity's volume over its rest volume)",
+                ))
+            }
+            (_, Some(r)) if !(r > 0.0 && r.is_finite()) => {
+                return Err(fault(
+                    format!("{key}.volume_ratio"),
+                    format!("{r} must be positive and finite"),
+                ))
+            }
+            _ => {}
+        }
+        if p.origin.is_some_and(|o| !o.iter().all(|c| c.is_finite())) {
+            return Err(fault(format!("{key}.origin"), "must be finite"));
+        }
     }
     Ok(())
 }
@@ -370,7 +393,27 @@ fn probes(scene: &Scene) -> Result<(), Fault> {
             | ProbeSpec::Position {
                 selection: Some(s), ..
             } => selection_defined(scene, format!("{key}.selection"), s)?,
+            ProbeSpec::LoadPressure { load } | ProbeSpec::EnclosedVolumeRatio { load }
+                if *load >= scene.loads.pressure.len() =>
+            {
+                return Err(fault(
+                    format!("{key}.load"),
+                    format!(
+                        "pressure load {load} does not exist: the scene has {} [[loads.pressure]] (numbered from 0)",
+                        scene.loads.pressure.len()
+                    ),
+                ));
+            }
+            ProbeSpec::Rotation { axis: Some(a), .. }
+                if a.iter().all(|c| *c == 0.0) || !a.iter().all(|c| c.is_finite()) =>
+            {
+                return Err(fault(
+                    format!("{key}.axis"),
+                    "the axis must be finite and not zero",
+                ));
+            }
             ProbeSpec::RadiusIncrease { selection, .. }
+            | ProbeSpec::Rotation { selection, .. }
             | ProbeSpec::ChamberVolumeRatio { selection } => {
                 selection_defined(scene, format!("{key}.selection"), selection)?
             }

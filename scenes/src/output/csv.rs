@@ -80,9 +80,18 @@ pub fn write_steps_csv(
             let _ = write!(out, ",contact_force_{name}_{axis}");
         }
     }
+    // Then `pressure_k,enclosed_volume_ratio_k` for every pressure load k.
+    let loads = history
+        .iter()
+        .map(|s| s.pressure_loads.len())
+        .max()
+        .unwrap_or(0);
+    for k in 0..loads {
+        let _ = write!(out, ",pressure_{k},enclosed_volume_ratio_{k}");
+    }
     out.push('\n');
     for s in history {
-        let _ = writeln!(
+        let _ = write!(
             out,
             "{},{:e},{},{},{:e},{:e},{:e},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{},{:e},{}",
             s.step,
@@ -108,17 +117,52 @@ pub fn write_steps_csv(
             s.increment,
             s.cuts.len()
         );
-        // The row's tail: the pairs, then each obstacle's force.
+        // The row's tail: the pairs, each obstacle's force, each pair of bodies' force,
+        // each pressure load's pressure and volume ratio.
         out.pop();
         let _ = write!(out, ",{}", s.contact.pairs);
-        for k in 0..obstacles.len() {
-            let f = s
-                .contact
-                .obstacle_forces
-                .get(k)
-                .copied()
-                .unwrap_or([0.0; 3]);
+        let forces = |all: &[[f64; 3]], k: usize| all.get(k).copied().unwrap_or([0.0; 3]);
+        for f in (0..obstacles.len())
+            .map(|k| forces(&s.contact.obstacle_forces, k))
+            .chain((0..body_pairs.len()).map(|k| forces(&s.contact.body_pair_forces, k)))
+        {
             let _ = write!(out, ",{:e},{:e},{:e}", f[0], f[1], f[2]);
+        }
+        for k in 0..loads {
+            let r = s.pressure_loads.get(k);
+            let (p, v) = r.map_or((f64::NAN, f64::NAN), |r| (r.pressure, r.volume_ratio));
+            let _ = write!(out, ",{p:e},{v:e}");
+        }
+        out.push('\n');
+    }
+    write_file(path, out.as_bytes())
+}
+
+/// `probes.csv`: every probe of the scene at every accepted step: `step`, `t`, `load_level`
+/// (the load scale of a load without a curve: `t` in quasi-static stepping, 1 in dynamics)
+/// and one column per probe, in name order (NaN where a probe cannot be evaluated).
+pub fn write_probes_csv(
+    path: &Path,
+    history: &[StepRecord],
+    dynamic: bool,
+) -> Result<(), SceneError> {
+    let names: Vec<&String> = history
+        .last()
+        .map_or(Vec::new(), |s| s.probes.keys().collect());
+    let mut out = String::from("step,t,load_level");
+    for name in &names {
+        let _ = write!(out, ",{name}");
+    }
+    out.push('\n');
+    for s in history {
+        let level = if dynamic { 1.0 } else { s.t };
+        let _ = write!(out, "{},{:e},{level:e}", s.step, s.t);
+        for name in &names {
+            let _ = write!(
+                out,
+                ",{:e}",
+                s.probes.get(*name).copied().unwrap_or(f64::NAN)
+            );
         }
         out.push('\n');
     }

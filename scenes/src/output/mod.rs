@@ -16,12 +16,12 @@ mod potential;
 mod preview;
 
 pub use atomic::{write_file, OutputDir, CHECKPOINT_FILE};
-pub use csv::{write_iterations_csv, write_steps_csv};
+pub use csv::{write_iterations_csv, write_probes_csv, write_steps_csv};
 pub use frames::{FrameFields, FrameWriter};
 pub use marker::{OutputIdentity, MARKER_FILE};
 pub use obstacle_shapes::obstacle_triangles;
 pub(crate) use plots::{draw_legend, finish_plot, plot_error, range, register_font, tick};
-pub use plots::{plot_energy, plot_residuals};
+pub use plots::{plot_energy, plot_pressure_volume, plot_residuals};
 pub use potential::{minimum, plot_potential, potential_series, write_potential_csv};
 pub use preview::{write_preview, PreviewOptions};
 
@@ -55,9 +55,11 @@ pub fn write_run_outputs(
         &result.obstacles,
         &result.body_pairs,
     )?;
+    write_probes_csv(&dir.join("probes.csv"), &result.history, result.dynamic)?;
     if plots {
         let title = run_title(result);
         plot_residuals(&dir.join("residuals.png"), &title, &attempted)?;
+        plot_pressure_volume(&dir.join("pressure-volume.png"), &title, &result.history)?;
         if result.dynamic {
             plot_energy(&dir.join("energy.png"), &title, &result.history)?;
         }

@@ -3,6 +3,8 @@
 //!
 //! - `residuals.png`: the Newton force (and constraint) residual of every iteration across
 //!   the steps, on a log scale (like Fig. 7 of Francu et al. 2021).
+//! - `pressure-volume.png`: every pressure load's pressure against its enclosed volume ratio
+//!   over the accepted steps (the curve designers of soft actuators read).
 //! - `energy.png`: kinetic, elastic, constraint, external and total energy against time
 //!   (like Fig. 8 of Sheen et al. 2021).
 
@@ -237,6 +239,68 @@ pub fn plot_energy(path: &Path, title: &str, history: &[StepRecord]) -> Result<(
     )
 }
 
+/// Every pressure load's pressure against its enclosed volume ratio (nothing without one).
+pub fn plot_pressure_volume(
+    path: &Path,
+    title: &str,
+    history: &[StepRecord],
+) -> Result<(), SceneError> {
+    let loads = history
+        .iter()
+        .map(|s| s.pressure_loads.len())
+        .max()
+        .unwrap_or(0);
+    if loads == 0 {
+        return Ok(());
+    }
+    register_font();
+    // From the rest state: no pressure, the rest volume.
+    let curve = |k: usize| {
+        std::iter::once((1.0, 0.0)).chain(
+            history
+                .iter()
+                .filter_map(move |s| s.pressure_loads.get(k))
+                .map(|r| (r.volume_ratio, r.pressure)),
+        )
+    };
+    let (v0, v1) = range((0..loads).flat_map(|k| curve(k).map(|c| c.0)));
+    let (p0, p1) = range((0..loads).flat_map(|k| curve(k).map(|c| c.1)));
+    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("Pressure-volume: {title}"), ("sans-serif", 24))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(90)
+        .build_cartesian_2d(v0..v1, p0..p1)
+        .map_err(|e| plot_error(path, e))?;
+    chart
+        .configure_mesh()
+        .x_desc("enclosed volume / rest volume")
+        .y_desc("pressure (Pa)")
+        .y_label_formatter(&|v| format!("{v:.3e}"))
+        .draw()
+        .map_err(|e| plot_error(path, e))?;
+    let colors = [BLUE, RED, GREEN, MAGENTA, BLACK, CYAN];
+    for k in 0..loads {
+        let color = colors[k % colors.len()];
+        chart
+            .draw_series(LineSeries::new(curve(k), color.stroke_width(2)))
+            .map_err(|e| plot_error(path, e))?
+            .label(format!("loads.pressure.{k}"))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    finish_plot(
+        &mut chart,
+        &root,
+        SeriesLabelPosition::UpperLeft,
+        true,
+        path,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -264,6 +328,8 @@ mod tests {
             wall_time_s: 0.0,
             tracked_probe: None,
             contact: Default::default(),
+            pressure_loads: Vec::new(),
+            probes: Default::default(),
         }
     }
 

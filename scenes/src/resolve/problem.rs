@@ -52,10 +52,23 @@ pub fn loads(scene: &Scene, selections: &Selections) -> Result<Vec<ScheduledLoad
         });
     }
     for (i, p) in scene.loads.pressure.iter().enumerate() {
+        let faces = selections.faces(&p.selection)?.to_vec();
+        let origin = vec3(p.origin.unwrap_or_default());
+        let cap_openings = p.cap_openings;
         loads.push(ScheduledLoad {
-            load: Load::Pressure {
-                faces: selections.faces(&p.selection)?.to_vec(),
-                pressure: p.pressure,
+            load: match p.volume_ratio {
+                Some(volume_ratio) => Load::Cavity {
+                    faces,
+                    volume_ratio,
+                    origin,
+                    cap_openings,
+                },
+                None => Load::Pressure {
+                    faces,
+                    pressure: p.pressure.unwrap_or(0.0),
+                    origin,
+                    cap_openings,
+                },
             },
             curve: curve(&p.curve, &format!("loads.pressure.{i}.curve"))?,
         });

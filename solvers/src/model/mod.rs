@@ -8,10 +8,11 @@ use crate::problem::loads::{Load, ScheduledLoad};
 use crate::problem::material::ZonalEnergy;
 use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::method::Method;
+use crate::problem::schedule::LoadLevel;
 use crate::problem::Problem;
 use crate::terms::{
-    AugmentedConstraints, Contact, DeadLoad, Elastic, EnergyTerm, EpidermisTerm, Faces,
-    FollowerPressure,
+    AugmentedConstraints, Contact, DeadLoad, Elastic, EnclosedVolume, EnergyTerm, EpidermisTerm,
+    Faces, FollowerPressure,
 };
 use crate::terms::{SurfaceContact, SurfaceContactSpec, SurfaceFriction};
 use isochor_constraints::{
@@ -23,13 +24,19 @@ use isochor_mesh::element::{RestGeometry, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3, Zones};
 use std::sync::Arc;
 
+pub mod cavities;
 mod densities;
 pub mod dofs;
+pub mod pressure_gauges;
 pub mod regions;
+mod stacked;
 
+use cavities::{Cavities, Cavity};
 use densities::elastic_density;
 use dofs::Dofs;
+use pressure_gauges::{GaugedPressure, PressureGauge, PressureReading};
 use regions::Regions;
+use stacked::StackedConstraints;
 
 /// How the nonlinear problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,8 +60,14 @@ pub struct Model {
     pub method: Method,
     pub scheme: NonlinearScheme,
     pub terms: Vec<Box<dyn EnergyTerm>>,
-    /// Constraints solved with multipliers (saddle point and dual).
+    /// Constraints solved with multipliers (saddle point and dual): the method's, then the
+    /// rows of the volume-controlled cavities.
     pub constraints: Option<Arc<dyn ConstraintSet>>,
+    /// The volume-controlled cavities (their rows end [`Model::constraints`]).
+    pub cavities: Option<Arc<Cavities>>,
+    /// The gauge of every pressure load ([`Load::Pressure`] and [`Load::Cavity`]), in the
+    /// order of the problem's loads.
+    pub pressure_gauges: Vec<PressureGauge>,
     /// The constraints folded into the primal energy of the dual solver.
     pub augmented: Option<AugmentedConstraints>,
     /// Contact of the boundary vertices against the problem's obstacles.
@@ -116,7 +129,55 @@ fn inverse_diagonal(set: &dyn ConstraintSet) -> Result<Vec<f64>, SolverError> {
         .collect())
 }
 
+/// `volume` with its openings capped if `cap`, the error naming load `l`, pressure load `k`.
+fn enclosed(
+    volume: EnclosedVolume,
+    cap: bool,
+    l: usize,
+    k: usize,
+) -> Result<EnclosedVolume, SolverError> {
+    if !cap {
+        return Ok(volume);
+    }
+    volume.capped().map_err(|e| {
+        SolverError::InvalidProblem(format!(
+            "load {l} (pressure load {k}, loads.pressure.{k}.cap_openings of a scene): {}",
+            message(e)
+        ))
+    })
+}
+
+/// The message of a problem error (without its `invalid problem:` prefix).
+fn message(e: SolverError) -> String {
+    match e {
+        SolverError::InvalidProblem(m) => m,
+        other => other.to_string(),
+    }
+}
+
 impl Model {
+    /// Sets the target volumes of the cavities at `level` (before evaluating the constraints
+    /// of a step).
+    pub fn set_load_level(&self, level: &LoadLevel) {
+        if let Some(cavities) = &self.cavities {
+            cavities.set_level(level);
+        }
+    }
+
+    /// Every pressure load's pressure and enclosed volume ratio at positions `x`, load
+    /// `level` and multipliers `multipliers`, in the order of the problem's loads.
+    pub fn pressure_readings(
+        &self,
+        x: &[Vec3],
+        level: &LoadLevel,
+        multipliers: &[f64],
+    ) -> Vec<PressureReading> {
+        self.pressure_gauges
+            .iter()
+            .map(|g| g.read(x, level, multipliers))
+            .collect()
+    }
+
     /// Shear modulus of the model's material (the volume-weighted mean over the regions).
     pub fn mu(&self) -> f64 {
         self.mu
@@ -269,7 +330,9 @@ impl Model {
             )?;
             terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
         }
-        for ScheduledLoad { load, curve } in loads {
+        let mut cavities = Vec::new();
+        let mut pressure_gauges = Vec::new();
+        for (l, ScheduledLoad { load, curve }) in loads.into_iter().enumerate() {
             terms.push(match load {
                 Load::Gravity(g) => {
                     let weights = mesh.node_masses(&density);
@@ -279,17 +342,84 @@ impl Model {
                     DeadLoad::traction(mesh.nodes(), &Faces::new(&mesh, &faces)?, traction)
                         .following(curve),
                 ),
-                Load::Pressure { faces, pressure } => Box::new(
-                    FollowerPressure::new(Faces::new(&mesh, &faces)?, pressure).following(curve),
-                ),
+                Load::Pressure {
+                    faces,
+                    pressure,
+                    origin,
+                    cap_openings,
+                } => {
+                    let faces = Faces::new(&mesh, &faces)?;
+                    let k = pressure_gauges.len();
+                    let volume = enclosed(EnclosedVolume::new(faces, origin), cap_openings, l, k)?;
+                    let given = GaugedPressure::Given {
+                        pressure,
+                        curve: curve.clone(),
+                    };
+                    pressure_gauges.push(PressureGauge::new(volume.clone(), given, mesh.nodes()));
+                    Box::new(FollowerPressure::on(volume, pressure).following(curve))
+                }
+                Load::Cavity {
+                    faces,
+                    volume_ratio,
+                    origin,
+                    cap_openings,
+                } => {
+                    let k = pressure_gauges.len();
+                    let volume = EnclosedVolume::new(Faces::new(&mesh, &faces)?, origin);
+                    let volume = enclosed(volume, cap_openings, l, k)?;
+                    let cavity = Cavity::new(volume.clone(), volume_ratio, curve, mesh.nodes())
+                        .map_err(|e| {
+                            SolverError::InvalidProblem(format!(
+                                "load {l} (pressure load {k}, loads.pressure.{k} of a scene): {}",
+                                message(e)
+                            ))
+                        })?;
+                    let row = GaugedPressure::Solved {
+                        row: cavities.len(),
+                    };
+                    pressure_gauges.push(PressureGauge::new(volume, row, mesh.nodes()));
+                    cavities.push(cavity);
+                    continue;
+                }
             });
         }
-        let rows = constraints
+        let method_rows = constraints.as_ref().map_or(0, |c| c.num_constraints());
+        let mut rows = constraints
             .as_deref()
             .or(augmented.as_ref().map(|a| a.constraints()))
             .map(|c| row_volumes(c, mesh.nodes()))
             .transpose()?
             .unwrap_or_default();
+        if constraints.is_none() && !cavities.is_empty() {
+            // Condensed: its folded rows have no multipliers, the cavities' rows do.
+            rows.clear();
+        }
+        let cavities =
+            (!cavities.is_empty()).then(|| Arc::new(Cavities::new(cavities, mesh.num_elements())));
+        if let Some(cavities) = &cavities {
+            if scheme == NonlinearScheme::Dual {
+                return Err(SolverError::InvalidProblem(
+                    "method dual cannot hold a cavity at a volume (loads.pressure volume_ratio): its \
+                     dual ascent needs a compliance for every multiplier, and a cavity's row is hard; \
+                     use mixed-p1 (or any other method) or a given pressure"
+                        .into(),
+                ));
+            }
+            for gauge in &mut pressure_gauges {
+                gauge.offset_row(method_rows);
+            }
+            constraints = Some(match constraints.take() {
+                Some(method) => Arc::new(StackedConstraints::new(method, cavities.clone())),
+                None => cavities.clone(),
+            });
+        }
+        let scheme = match (scheme, &cavities) {
+            (NonlinearScheme::Minimize, Some(_)) => NonlinearScheme::SaddleDirect,
+            (scheme, _) => scheme,
+        };
+        if let Some(cavities) = &cavities {
+            rows.extend(cavities.cavities().iter().map(Cavity::rest_volume));
+        }
         let contact = (!obstacles.is_empty())
             .then(|| -> Result<Contact, SolverError> {
                 let nodes = mesh.boundary()?.nodes();
@@ -304,6 +434,8 @@ impl Model {
             scheme,
             terms,
             constraints,
+            cavities,
+            pressure_gauges,
             augmented,
             row_volumes: rows,
             regions,

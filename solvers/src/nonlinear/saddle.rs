@@ -210,6 +210,7 @@ impl SaddleNewton {
         level: &LoadLevel,
     ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
         let constraints = system.model.constraints.clone().expect("checked in new");
+        system.model.set_load_level(level);
         let eval = system.energy(x, level, true)?;
         let mut sigma = eval.gradient;
         let pattern = &self.jacobian_pattern;
@@ -237,6 +238,7 @@ impl SaddleNewton {
         let missing =
             || SolverError::InvalidProblem("saddle-point Newton without constraints".into());
         let constraints = system.model.constraints.clone().ok_or_else(missing)?;
+        system.model.set_load_level(&target.level);
         let d_fixed = gap(x, &target.prescribed, 3 * x.len());
         let eval = system.assemble(x, &target.level, Some(p))?;
         let jacobian = system.jacobian.as_ref().ok_or_else(missing)?;

@@ -157,8 +157,27 @@ impl ProblemBuilder {
     /// rim adds forces no pressure exerts.
     pub fn pressure(self, faces: impl IntoIterator<Item = [usize; 3]>, pressure: f64) -> Self {
         self.load(Load::Pressure {
+            origin: Vec3::zeros(),
+            cap_openings: false,
             faces: faces.into_iter().collect(),
             pressure,
+        })
+    }
+
+    /// Holds the cavity lined by boundary `faces` (body-outward, closed or closed by symmetry
+    /// planes through `origin`) at `volume_ratio` times its rest volume at full load; its
+    /// pressure is solved for ([`Load::Cavity`]).
+    pub fn cavity(
+        self,
+        faces: impl IntoIterator<Item = [usize; 3]>,
+        volume_ratio: f64,
+        origin: Vec3,
+    ) -> Self {
+        self.load(Load::Cavity {
+            faces: faces.into_iter().collect(),
+            volume_ratio,
+            origin,
+            cap_openings: false,
         })
     }
 

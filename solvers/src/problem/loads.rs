@@ -92,6 +92,27 @@ pub enum Load {
         faces: Vec<[usize; 3]>,
         /// Pressure, force per unit deformed area.
         pressure: f64,
+        /// The point the enclosed volume is measured about (its potential is the cone volume
+        /// of the faces about it, see [`crate::terms::EnclosedVolume`]): any point for a
+        /// closed surface, a point on the symmetry planes of a cut one.
+        origin: Vec3,
+        /// Whether each boundary loop of the faces (a chamber's opening) is capped by the fan
+        /// from its centroid ([`crate::terms::Openings`]).
+        cap_openings: bool,
+    },
+    /// A cavity held at a volume: the faces of a [`Load::Pressure`], its enclosed volume
+    /// about `origin` held at `1 + (volume_ratio - 1) s` times the rest volume (`s` the load
+    /// scale), the pressure the unknown multiplier of that constraint (positive inflates).
+    Cavity {
+        /// The faces lining the cavity, by their corner vertices, with the body's outward
+        /// orientation; closed, or closed by symmetry planes through `origin`.
+        faces: Vec<[usize; 3]>,
+        /// The cavity's volume over its rest volume at full load.
+        volume_ratio: f64,
+        /// The point the enclosed volume is measured about.
+        origin: Vec3,
+        /// Whether each boundary loop of the faces is capped by the fan from its centroid.
+        cap_openings: bool,
     },
 }
 

@@ -29,7 +29,25 @@ impl Problem {
             let (faces, usable) = match &scheduled.load {
                 Load::Gravity(g) => (&[][..], finite(g)),
                 Load::Traction { faces, traction } => (&faces[..], finite(traction)),
-                Load::Pressure { faces, pressure } => (&faces[..], pressure.is_finite()),
+                Load::Pressure {
+                    faces,
+                    pressure,
+                    origin,
+                    ..
+                } => (&faces[..], pressure.is_finite() && finite(origin)),
+                Load::Cavity {
+                    faces,
+                    volume_ratio,
+                    origin,
+                    ..
+                } => {
+                    if !(*volume_ratio > 0.0 && volume_ratio.is_finite()) {
+                        return bad(format!(
+                            "load {l}: volume_ratio = {volume_ratio} must be positive and finite"
+                        ));
+                    }
+                    (&faces[..], finite(origin))
+                }
             };
             if !usable {
                 return bad(format!("load {l}: its vector or pressure is not finite"));

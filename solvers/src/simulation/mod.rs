@@ -1,6 +1,7 @@
 //! The stepping drivers (quasi-static load stepping and implicit Euler) and their results.
 
 mod construction;
+mod limit_point;
 mod linearize;
 mod matrices;
 mod postprocess;

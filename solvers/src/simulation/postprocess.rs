@@ -4,6 +4,7 @@
 use super::state::{Energies, Frame, State};
 use super::stepper::Progress;
 use super::Simulation;
+use crate::model::pressure_gauges::PressureReading;
 use crate::model::Model;
 use crate::nonlinear::report::StepReport;
 use crate::problem::method::Method;
@@ -14,13 +15,14 @@ use isochor_mesh::Vec3;
 use nalgebra::Matrix3;
 
 impl Simulation {
-    /// What the observer of a run sees after accepted step `index` (ending on `frame`, if
-    /// it ends on one), at the current state with `inverted` inverted tets.
+    /// What the observer of a run sees after the accepted step of `report` (ending on
+    /// `frame`, if it ends on one), at the current state and load `level` with `inverted`
+    /// inverted tets.
     pub(super) fn frame<'a>(
         &'a self,
-        index: usize,
         frame: Option<usize>,
         progress: Progress,
+        level: LoadLevel,
         inverted: usize,
         report: &'a StepReport,
         cuts: &'a [StepReport],
@@ -28,7 +30,7 @@ impl Simulation {
         let contact = self.model.contact.as_ref();
         let stress = self.cauchy_stress(&self.state);
         Frame {
-            index,
+            index: report.step,
             frame,
             progress,
             state: &self.state,
@@ -55,7 +57,15 @@ impl Simulation {
             report,
             cuts,
             contact_multipliers: contact.map(|c| c.multipliers()).unwrap_or_default(),
+            pressure_loads: self.pressure_readings(&self.state, level),
         }
+    }
+
+    /// Every pressure load's pressure (given or solved) and enclosed volume ratio at `state`
+    /// and load `level`, in the order of the problem's pressure loads.
+    pub fn pressure_readings(&self, state: &State, level: LoadLevel) -> Vec<PressureReading> {
+        self.model
+            .pressure_readings(&state.positions, &level, &state.multipliers)
     }
 
     /// Pressure per tet at `state`: for `standard`, the mean Cauchy stress `tr(sigma)/3`;
@@ -74,7 +84,9 @@ impl Simulation {
         (0..self.model.mesh.num_elements())
             .map(|e| match (&constrained, self.model.method) {
                 (None, _) => material_pressure(e),
-                (Some(p), Method::Zonal) => p[e] + material_pressure(e),
+                (Some(p), Method::Zonal | Method::Standard | Method::Condensed) => {
+                    p[e] + material_pressure(e)
+                }
                 (Some(p), _) => p[e],
             })
             .collect()
@@ -118,10 +130,15 @@ impl Simulation {
         );
         let mesh = &self.model.mesh;
         let vertices = mesh.corners().num_vertices();
-        if !nodal || state.multipliers.len() != vertices {
+        let cavities = self
+            .model
+            .cavities
+            .as_ref()
+            .map_or(0, |c| c.cavities().len());
+        if !nodal || state.multipliers.len() != vertices + cavities {
             return None;
         }
-        let mut p = state.multipliers.clone();
+        let mut p = state.multipliers[..vertices].to_vec();
         p.resize(mesh.num_nodes(), 0.0);
         for e in 0..mesh.num_elements() {
             let nodes = mesh.element(e);
@@ -180,7 +197,9 @@ impl Simulation {
     fn constraint_energy(&self, state: &State) -> f64 {
         let p = &state.multipliers;
         match (&self.model.constraints, &self.model.augmented) {
-            (Some(c), _) if p.len() == c.num_constraints() => {
+            (Some(c), _)
+                if p.len() == c.num_constraints() && self.model.method != Method::Condensed =>
+            {
                 0.5 * c
                     .compliance()
                     .nonzero_entries()
@@ -188,7 +207,7 @@ impl Simulation {
                     .map(|(r, k, v)| p[r] * v * p[k])
                     .sum::<f64>()
             }
-            (None, Some(augmented)) => augmented
+            (_, Some(augmented)) if self.model.method == Method::Condensed => augmented
                 .evaluate(&state.positions, &LoadLevel::FULL, None, None)
                 .unwrap_or(f64::NAN),
             _ => 0.0,

@@ -2,6 +2,7 @@
 //! step an attempt (the method's solve inside the contact updates), a cut on failure, or the
 //! accepted state (velocities, volume projection) and its frame.
 
+use super::limit_point::PressureHistory;
 use super::state::{Frame, RunSummary, SimulationFailure, State};
 use super::stepper::{Attempt, Progress, Stepper};
 use super::stepping::{check_stepping, Stepping};
@@ -78,6 +79,14 @@ impl Simulation {
         let mut reports = Vec::new();
         let mut max_inverted = self.model.mesh.count_inverted(&self.state.positions);
         let mut cuts: Vec<StepReport> = Vec::new();
+        let mut pressures = PressureHistory::new(
+            self.model
+                .pressure_gauges
+                .iter()
+                .map(|g| g.is_given())
+                .collect(),
+            self.pressure_readings(&self.state, stepper.level_at(&progress)),
+        );
         while !stepper.finished(&progress) {
             let attempt = stepper.next(&progress);
             let step = progress.steps + 1;
@@ -87,6 +96,9 @@ impl Simulation {
                 report.converged = false;
                 report.failure = Some(e.to_string());
                 reports.push(report.clone());
+                if let (false, Some(e)) = (cuts.is_empty(), pressures.limit_point()) {
+                    return Err(failure(e, step, &self.state, &reports));
+                }
                 match stepper.cut(&progress, &attempt, e) {
                     Ok(cut) => {
                         cuts.push(report);
@@ -107,7 +119,16 @@ impl Simulation {
             progress = stepper.accept(&progress, &attempt, report.newton_iterations());
             let inverted = self.model.mesh.count_inverted(&self.state.positions);
             max_inverted = max_inverted.max(inverted);
-            observer(&self.frame(step, attempt.frame, progress, inverted, report, &cuts));
+            let frame = self.frame(
+                attempt.frame,
+                progress,
+                attempt.level,
+                inverted,
+                report,
+                &cuts,
+            );
+            pressures.push(frame.pressure_loads.clone());
+            observer(&frame);
             cuts.clear();
         }
         Ok(RunSummary {

@@ -3,6 +3,7 @@
 
 use super::stepper::Progress;
 use crate::error::SolverError;
+use crate::model::pressure_gauges::PressureReading;
 use crate::nonlinear::report::StepReport;
 use crate::terms::SurfaceContactSummary;
 use isochor_mesh::Vec3;
@@ -87,6 +88,9 @@ pub struct Frame<'a> {
     pub cuts: &'a [StepReport],
     /// The contact multipliers of the state (empty without obstacles).
     pub contact_multipliers: Vec<f64>,
+    /// Every pressure load's pressure and enclosed volume ratio, in the order of the
+    /// problem's pressure loads (see [`crate::Simulation::pressure_readings`]).
+    pub pressure_loads: Vec<PressureReading>,
 }
 
 impl Frame<'_> {

@@ -292,6 +292,15 @@ impl Stepper {
         }
     }
 
+    /// The load level of the state `progress` stands at.
+    pub fn level_at(&self, progress: &Progress) -> LoadLevel {
+        if self.dynamic {
+            LoadLevel::dynamic(progress.t, self.duration)
+        } else {
+            LoadLevel::quasi_static(progress.t)
+        }
+    }
+
     /// `progress` after `attempt` failed with `error`: half its increment, or the error if
     /// that is below the smallest increment.
     pub fn cut(

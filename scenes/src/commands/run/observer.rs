@@ -9,11 +9,12 @@ use crate::error::SceneError;
 use crate::format::Scene;
 use crate::output::{FrameFields, FrameWriter, OutputDir};
 use crate::probes;
-use crate::record::StepRecord;
+use crate::record::{PressureLoadRecord, StepRecord};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, Energies, Frame};
 use nalgebra::Matrix3;
+use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -109,7 +110,19 @@ impl<'a> Observer<'a> {
         );
         step.cuts = frame.cuts.iter().map(cut_record).collect();
         step.tracked_probe = self.tracked_probe(frame);
+        step.pressure_loads = frame
+            .pressure_loads
+            .iter()
+            .map(|r| PressureLoadRecord {
+                pressure: r.pressure,
+                volume_ratio: r.volume_ratio,
+            })
+            .collect();
         self.history.push(step);
+        let probes = self.step_probes(frame);
+        if let Some(step) = self.history.last_mut() {
+            step.probes = probes;
+        }
         self.last_pressures.clone_from(&frame.tet_pressures);
         self.last_stress.clone_from(&frame.stress);
         self.last_von_mises.clone_from(&frame.von_mises);
@@ -152,6 +165,27 @@ impl<'a> Observer<'a> {
                 None
             }
         }
+    }
+
+    /// Every probe of the scene at this step (the step already in the history), NaN where
+    /// one fails: the errors are the final evaluation's to report.
+    fn step_probes(&self, frame: &Frame<'_>) -> BTreeMap<String, f64> {
+        let state = ProbedState {
+            positions: &frame.state.positions,
+            tet_pressures: &frame.tet_pressures,
+            constraint_residual: frame.report.constraint_residual,
+            energies: frame.energies,
+            history: &self.history,
+        };
+        let input = self.body.probe_input(&state);
+        self.scene
+            .probes
+            .keys()
+            .map(|name| {
+                let value = probes::evaluate_one(self.scene, name, &input).unwrap_or(f64::NAN);
+                (name.clone(), value)
+            })
+            .collect()
     }
 
     /// Writes the step's VTU frame, if it is a frame the writer wants.

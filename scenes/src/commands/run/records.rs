@@ -110,5 +110,7 @@ pub(super) fn record(
         wall_time_s: report.wall_time.as_secs_f64(),
         tracked_probe: None,
         contact: contact_record(report, surface, meshed),
+        pressure_loads: Vec::new(),
+        probes: Default::default(),
     }
 }
