@@ -150,13 +150,7 @@ impl<'a> Observer<'a> {
     /// one (an error is kept for the end of the run).
     fn tracked_probe(&mut self, frame: &Frame<'_>) -> Option<f64> {
         let name = self.scene.output.potential_against.as_ref()?;
-        let state = ProbedState {
-            positions: &frame.state.positions,
-            tet_pressures: &frame.tet_pressures,
-            constraint_residual: frame.report.constraint_residual,
-            energies: frame.energies,
-            history: &self.history,
-        };
+        let state = self.probed_state(frame);
         let input = self.body.probe_input(&state);
         match probes::evaluate_one(self.scene, name, &input) {
             Ok(v) => Some(v),
@@ -167,16 +161,21 @@ impl<'a> Observer<'a> {
         }
     }
 
-    /// Every probe of the scene at this step (the step already in the history), NaN where
-    /// one fails: the errors are the final evaluation's to report.
-    fn step_probes(&self, frame: &Frame<'_>) -> BTreeMap<String, f64> {
-        let state = ProbedState {
+    /// What the probes read of this step's frame and the history so far.
+    fn probed_state<'f>(&'f self, frame: &'f Frame<'_>) -> ProbedState<'f> {
+        ProbedState {
             positions: &frame.state.positions,
             tet_pressures: &frame.tet_pressures,
             constraint_residual: frame.report.constraint_residual,
             energies: frame.energies,
             history: &self.history,
-        };
+        }
+    }
+
+    /// Every probe of the scene at this step (the step already in the history), NaN where
+    /// one fails: the errors are the final evaluation's to report.
+    fn step_probes(&self, frame: &Frame<'_>) -> BTreeMap<String, f64> {
+        let state = self.probed_state(frame);
         let input = self.body.probe_input(&state);
         self.scene
             .probes
