@@ -4,8 +4,8 @@
 //! friction angle and sticks below it (creeping by less than `epsv` per step plus its
 //! elastic shear); and on a level plate moving at a constant speed the block, at rest at the
 //! start, is dragged up to the plate's speed and then carried along, slipping by less than
-//! `epsv` per step. No accepted state has a block triangle intersect a plate triangle
-//! (checked by [`slide`]).
+//! `epsv` per step; the plate's own `[[contact.obstacles]]` coefficient applies. No accepted
+//! state has a block triangle intersect a plate triangle (checked by [`slide`]).
 
 use super::incline::{fitted_acceleration, slide, G};
 use isochor_scenes::resolve::{self, ResolvedScene};
@@ -34,6 +34,21 @@ fn plate_file() -> String {
 /// tilted by `theta` (degrees), friction `mu`, the plate translating by `translate` over the
 /// run.
 fn block_on_meshed_plate(theta: f64, mu: f64, translate: [f64; 3]) -> ResolvedScene {
+    let friction = format!("friction = {mu}");
+    resolve::build(&block_on_meshed_plate_scene(
+        theta, "", &friction, translate,
+    ))
+    .unwrap()
+}
+
+/// The scene of [`block_on_meshed_plate`] with the `[[obstacles]]` tables `before` ahead of
+/// the plate's and the `[contact]` friction keys `friction`.
+fn block_on_meshed_plate_scene(
+    theta: f64,
+    before: &str,
+    friction: &str,
+    translate: [f64; 3],
+) -> Scene {
     let t = theta.to_radians();
     let text = format!(
         r#"name = "block-on-a-meshed-plate"
@@ -54,6 +69,7 @@ rho = 1000.0
 [loads]
 gravity = [{gx}, 0.0, {gz}]
 
+{before}
 [[obstacles]]
 shape = "mesh"
 path = '{plate}'
@@ -62,7 +78,7 @@ translate = [{}, {}, {}]
 [contact]
 dhat = {DHAT}
 self = false
-friction = {mu}
+{friction}
 
 [stepping]
 mode = "dynamic"
@@ -78,7 +94,7 @@ frames = {STEPS}
         gz = -G * t.cos(),
         plate = plate_file(),
     );
-    resolve::build(&Scene::from_toml_str(&text, "block-on-a-meshed-plate").unwrap()).unwrap()
+    Scene::from_toml_str(&text, "block-on-a-meshed-plate").unwrap()
 }
 
 #[test]
@@ -120,6 +136,33 @@ fn the_block_sticks_on_a_meshed_plate_below_the_friction_angle() {
             "theta {theta}, mu {mu}: {creep} beyond {bound}"
         );
     }
+}
+
+/// `[[contact.obstacles]]` names the plate by its index among all `[[obstacles]]` (an
+/// analytic half-space far below comes first): its coefficient holds the block at 30 degrees
+/// although the scene's is 0, and the half-space keeps the scene's.
+#[test]
+fn the_plates_own_coefficient_holds_the_block() {
+    let scene = block_on_meshed_plate_scene(
+        30.0,
+        "[[obstacles]]\nshape = \"half-space\"\npoint = [0.0, 0.0, -1.0]\n",
+        "friction = 0.0\n[[contact.obstacles]]\nobstacle = 1\nfriction = 0.7",
+        [0.0; 3],
+    );
+    let resolved = resolve::build(&scene).unwrap();
+    let friction = resolved.friction.as_ref().unwrap();
+    assert_eq!(friction.obstacles, [0.0], "the half-space's");
+    let surfaces = friction.surfaces.as_ref().unwrap();
+    // The block is body 0, the plate (the first meshed obstacle) body 1.
+    assert_eq!(surfaces.coefficient(0, 1), 0.7);
+    assert_eq!(surfaces.coefficient(0, 0), 0.0);
+    let epsv = friction.epsv;
+    let (path, _) = slide(resolved, None);
+    let creep = path.last().unwrap().1 - path[0].1;
+    let shear = 1000.0 * G * 0.5 * 0.01f64.powi(2) / (2.0 * 1e6 / 2.6);
+    let bound = STEPS as f64 * epsv + shear;
+    eprintln!("plate's own coefficient 0.7: displacement {creep:.3e} (bound {bound:.3e})");
+    assert!(creep.abs() <= bound, "{creep} beyond {bound}");
 }
 
 #[test]
