@@ -37,11 +37,12 @@ pub fn friction(
         .enumerate()
         .flat_map(|(j, &k)| (0..num_bodies).map(move |b| ([b, num_bodies + j], coefficient(k))));
     let pairs: Vec<([usize; 2], f64)> = body_pairs.chain(obstacle_pairs).collect();
-    let surfaces =
-        (contact.friction > 0.0 || pairs.iter().any(|p| p.1 > 0.0)).then(|| SurfaceFrictionSpec {
+    let surfaces = (contact.friction > 0.0 || pairs.iter().any(|p| p.1 > 0.0)).then_some(
+        SurfaceFrictionSpec {
             friction: contact.friction,
             pairs,
-        });
+        },
+    );
     let any_obstacle = obstacles.iter().any(|&mu| mu > 0.0);
     (any_obstacle || surfaces.is_some()).then(|| FrictionSpec {
         epsv: contact.epsv.unwrap_or(DEFAULT_EPSV * dhat),
