@@ -15,6 +15,7 @@ mod extremes;
 mod friction;
 mod incline;
 mod locking;
+mod mesh_obstacle_friction;
 mod mesh_obstacle_term;
 mod newton;
 mod orderings;

@@ -1,14 +1,21 @@
 //! Finite-difference property tests of lagged smoothed friction (Li et al. 2020, sec. 5):
 //! the surface friction term on a point-triangle and an edge-edge pair, and the friction of
-//! a vertex against a moving analytic obstacle (inside the obstacle contact term), energy,
-//! gradient and Hessian against central differences, at slips near 0, just below and just
-//! above `epsv`, and far beyond it; every Hessian positive semidefinite.
+//! a vertex against a moving analytic obstacle (inside the obstacle contact term), and the
+//! surface friction with a meshed obstacle's vertices in the pair (a triangle or an edge of
+//! it, and a cube over a plate sliding under it): energy, gradient and Hessian against
+//! central differences, at slips near 0, just below and just above `epsv`, and far beyond
+//! it; every Hessian positive semidefinite.
 
-use isochor_mesh::contact::{edge_edge_distance_kind, point_triangle_distance_kind, DistanceKind};
+use isochor_mesh::contact::{
+    edge_edge_distance_kind, point_triangle_distance_kind, ContactSurface, DistanceKind,
+};
+use isochor_mesh::generate::box_grid;
 use isochor_mesh::Vec3;
 use isochor_solvers::contact::{plane_basis, FrictionPair, PairForce};
-use isochor_solvers::terms::{Contact, EnergyTerm, SurfaceFriction};
-use isochor_solvers::{LoadLevel, Obstacle, Shape, SurfaceFrictionSpec};
+use isochor_solvers::terms::{
+    Contact, EnergyTerm, FrictionLag, SurfaceContact, SurfaceContactSpec, SurfaceFriction,
+};
+use isochor_solvers::{LoadLevel, MeshObstacle, Obstacle, Shape, SurfaceFrictionSpec};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
@@ -89,12 +96,15 @@ fn check_term(term: &dyn EnergyTerm, x: &[Vec3], h: f64, floor: f64) -> Result<(
 }
 
 /// The surface friction term on one pair of closest features `kind` of the four nodes at
-/// `x0` (the lagged and start state), evaluated at `x0` plus motions `base` scaled to a
-/// tangential slip of `slip epsv`.
+/// `x0` (the lagged and start state), of which the first `free` are a body's nodes (degrees
+/// of freedom) and the others a meshed obstacle's vertices, evaluated with every node moved
+/// by `base` scaled to a tangential slip of `slip epsv` (the obstacle's part prescribed over
+/// the step, the body's the state).
 fn check_pair(
     kind: DistanceKind,
     x0: [Vec3; 4],
     base: [Vec3; 4],
+    free: usize,
     epsv: f64,
     slip: f64,
     lambda: f64,
@@ -102,25 +112,34 @@ fn check_pair(
     let spec = SurfaceFrictionSpec {
         friction: 0.0,
         pairs: vec![([0, 1], 0.6)],
-        node_bodies: vec![0, 0, 1, 1],
     };
     let term = SurfaceFriction::new(spec, epsv);
-    let force = PairForce {
-        nodes: [0, 1, 2, 3],
-        kind,
-        lambda,
-    };
-    term.lag(&x0, &x0, &[force]);
-    prop_assert_eq!(term.num_pairs(), 1);
     // The same pair as the kernel sees it, for the slip's scale.
     let pair = FrictionPair::new(kind, &x0, 0.6 * lambda, epsv);
     let y = pair.tangential_motion(&base).norm();
     prop_assume!(y > 1e-6);
-    let x: Vec<Vec3> = (0..4)
-        .map(|i| x0[i] + base[i] * (slip * epsv / y))
-        .collect();
+    let u: [Vec3; 4] = std::array::from_fn(|i| base[i] * (slip * epsv / y));
+    let lag = FrictionLag {
+        positions: x0.to_vec(),
+        // Side one body 0, side two body 1 (the obstacle, or the other body).
+        bodies: (0..4).map(|i| usize::from(i >= free.min(2))).collect(),
+        obstacle_motion: u[free..].to_vec(),
+        forces: vec![PairForce {
+            nodes: [0, 1, 2, 3],
+            kind,
+            lambda,
+        }],
+    };
+    term.lag(&x0[..free], &lag);
+    prop_assert_eq!(term.num_pairs(), 1);
+    let x: Vec<Vec3> = (0..free).map(|i| x0[i] + u[i]).collect();
+    prop_assert!(
+        term.hessian_pattern()
+            .iter()
+            .all(|&(r, c)| r < 3 * free && c < 3 * free),
+        "no obstacle rows"
+    );
     let (e, _, _) = evaluate(&term, &x);
-    let u: [Vec3; 4] = std::array::from_fn(|i| x[i] - x0[i]);
     prop_assert!((e - pair.potential(&u)).abs() <= 1e-12 * e.abs().max(1e-300));
     check_term(&term, &x, STEP * epsv, 0.6 * lambda / epsv)
 }
@@ -133,7 +152,7 @@ proptest! {
         let x0 = [p, a, b, c];
         let kind = point_triangle_distance_kind(&p, &a, &b, &c);
         prop_assume!(kind.squared_distance(&x0) > 1e-4);
-        check_pair(kind, x0, [u, w * 0.5, u * 0.2 - w, w * 0.1], epsv, s, lambda)?;
+        check_pair(kind, x0, [u, w * 0.5, u * 0.2 - w, w * 0.1], 4, epsv, s, lambda)?;
     }
 
     #[test]
@@ -142,7 +161,27 @@ proptest! {
         let kind = edge_edge_distance_kind(&a0, &a1, &b0, &b1);
         prop_assume!(kind.squared_distance(&x0) > 1e-4);
         prop_assume!((a1 - a0).cross(&(b1 - b0)).norm() > 1e-2);
-        check_pair(kind, x0, [u, u * 0.3 + w, w * -0.7, u - w], epsv, s, lambda)?;
+        check_pair(kind, x0, [u, u * 0.3 + w, w * -0.7, u - w], 4, epsv, s, lambda)?;
+    }
+
+    /// A body's vertex against a meshed obstacle's triangle (its three vertices prescribed:
+    /// they move by their own motion over the step, and their rows are dropped).
+    #[test]
+    fn surface_friction_of_a_vertex_against_an_obstacle_triangle(p in vec3(), a in vec3(), b in vec3(), c in vec3(), u in vec3(), w in vec3(), epsv in 1e-4..1e-1f64, s in slip(), lambda in 0.1..10.0f64) {
+        let x0 = [p, a, b, c];
+        let kind = point_triangle_distance_kind(&p, &a, &b, &c);
+        prop_assume!(kind.squared_distance(&x0) > 1e-4);
+        check_pair(kind, x0, [u, w, w * 0.8 - u * 0.1, w + u * 0.3], 1, epsv, s, lambda)?;
+    }
+
+    /// A body's edge against a meshed obstacle's edge.
+    #[test]
+    fn surface_friction_of_an_edge_against_an_obstacle_edge(a0 in vec3(), a1 in vec3(), b0 in vec3(), b1 in vec3(), u in vec3(), w in vec3(), epsv in 1e-4..1e-1f64, s in slip(), lambda in 0.1..10.0f64) {
+        let x0 = [a0, a1, b0, b1];
+        let kind = edge_edge_distance_kind(&a0, &a1, &b0, &b1);
+        prop_assume!(kind.squared_distance(&x0) > 1e-4);
+        prop_assume!((a1 - a0).cross(&(b1 - b0)).norm() > 1e-2);
+        check_pair(kind, x0, [u, u * 0.3 + w, w * -0.7, w * -0.6 + u * 0.1], 2, epsv, s, lambda)?;
     }
 
     /// A vertex near a translating sphere: the friction part of the obstacle term (with
@@ -260,4 +299,86 @@ fn bad_friction_values_are_errors() {
         surfaces: None,
     };
     assert!(spec.validate().unwrap_err().to_string().contains("epsv"));
+}
+
+/// A unit cube 1 mm above a plate of two triangles, a meshed obstacle translating along
+/// `slide` (reached at the end of the run), in a surface-contact term with `dhat` 1 cm.
+fn cube_over_a_sliding_plate(slide: Vec3) -> (Vec<Vec3>, SurfaceContact, MeshObstacle) {
+    let cube = box_grid(
+        Vec3::new(0.0, 0.0, 0.001),
+        Vec3::new(1.0, 1.0, 1.001),
+        [1, 1, 1],
+    )
+    .unwrap();
+    let rest = cube.positions().to_vec();
+    let plate = MeshObstacle {
+        name: "plate".into(),
+        vertices: vec![
+            Vec3::new(-1.0, -1.0, 0.0),
+            Vec3::new(2.0, -1.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(-1.0, 2.0, 0.0),
+        ],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        translate: slide,
+        rotate: None,
+        curve: None,
+    };
+    let spec = SurfaceContactSpec {
+        dhat: 0.01,
+        self_contact: false,
+        node_bodies: vec![0; rest.len()],
+    };
+    let surface = ContactSurface::from_boundary(&cube.boundary().unwrap());
+    let term = SurfaceContact::new(spec, surface, rest.clone(), 1e5)
+        .unwrap()
+        .with_obstacles(vec![plate.clone()])
+        .unwrap();
+    (rest, term, plate)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(8))]
+
+    /// Friction of the cube against the plate sliding under it over a step from `t0` to `t1`:
+    /// the lag carries the plate's motion over the step; a cube that stayed put is dragged
+    /// along the plate's motion, one that moved with the plate feels no friction, and the
+    /// term matches its central differences with the plate's rows dropped.
+    #[test]
+    fn friction_against_a_sliding_meshed_plate(t0 in 0.0..0.9f64, moves in proptest::collection::vec(-1.0..1.0f64, 24), epsv in 1e-4..1e-2f64) {
+        let slide = Vec3::new(0.02, -0.01, 0.0);
+        let (rest, contact, plate) = cube_over_a_sliding_plate(slide);
+        let n = rest.len();
+        let (from, to) = (LoadLevel::quasi_static(t0), LoadLevel::quasi_static(t0 + 0.1));
+        contact.begin_attempt(&rest, &to).unwrap();
+        let lag = contact.friction_lag(&rest, &from);
+        let (then, now) = (plate.placed(&from), plate.placed(&to));
+        prop_assert_eq!(lag.positions.len(), n + 4);
+        for (i, m) in lag.obstacle_motion.iter().enumerate() {
+            prop_assert!((m - (now[i] - then[i])).norm() <= 1e-15, "vertex {}: {}", i, m);
+        }
+        prop_assert!(lag.bodies[n..].iter().all(|&b| b == 1), "the plate is body 1");
+        let friction = SurfaceFriction::new(SurfaceFrictionSpec { friction: 0.5, pairs: vec![] }, epsv);
+        friction.lag(&rest, &lag);
+        prop_assert!(friction.num_pairs() > 0, "the bottom face's pairs");
+        let lambda = lag.forces.iter().map(|f| f.lambda).fold(0.0, f64::max);
+        // Left behind: the plate drags the cube along its motion.
+        let (_, g, _) = evaluate(&friction, &rest);
+        let drag: Vec3 = (0..n).map(|v| -Vec3::new(g[3 * v], g[3 * v + 1], g[3 * v + 2])).sum();
+        let step = slide * 0.1;
+        prop_assert!(drag.dot(&step) > 0.9 * drag.norm() * step.norm(), "drag {} along {}", drag, step);
+        // Carried along: no slip, no friction, but for the rounding of unit coordinates (a
+        // slip of a few ulps, 1e-15 m, times f1(y)/y <= 2/epsv, times mu lambda).
+        let carried: Vec<Vec3> = rest.iter().map(|p| p + step).collect();
+        let (_, g, _) = evaluate(&friction, &carried);
+        let rounding = 0.5 * lambda * 2.0 / epsv * 1e-15;
+        prop_assert!(g.iter().all(|v| v.abs() <= rounding), "{:?} beyond {}", g, rounding);
+        // Slipping by a few epsv in any direction.
+        let x: Vec<Vec3> = carried
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p + Vec3::new(moves[3 * i], moves[3 * i + 1], moves[3 * i + 2]) * (2.0 * epsv))
+            .collect();
+        check_term(&friction, &x, STEP * epsv, 0.5 * lambda / epsv)?;
+    }
 }

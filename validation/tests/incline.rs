@@ -2,31 +2,39 @@
 //! the ground under gravity tilted by `theta` sticks when `tan(theta) < mu` and slides with
 //! the acceleration `g (sin(theta) - mu cos(theta))` when `tan(theta) > mu`; and a block
 //! resting on a clamped plate body (friction between surfaces) sticks with a high
-//! coefficient between the two bodies and slides without friction.
+//! coefficient between the two bodies and slides without friction. No accepted state of any
+//! of these runs has two surface triangles intersect.
 //!
 //! Sticking is smoothed: under a tangential force `F` below `mu lambda` a step slips by the
 //! `u` with `f1(u) = F / (mu lambda)`, less than `epsv`, so over `N` steps the block creeps by
 //! less than `N epsv` (plus its elastic shear, `rho g sin(theta) H^2 / (2 G)` at the top of a
 //! block of height `H`, which the centroid sees half of).
 
+use isochor_mesh::contact::{intersecting_triangles, ContactSurface};
 use isochor_mesh::Vec3;
 use isochor_scenes::resolve::{self, ResolvedScene};
 use isochor_scenes::{builtin, load_scene, Override, Scene};
 use isochor_solvers::{Simulation, Stepping};
 
-const G: f64 = 9.81;
+/// The gravity's magnitude (m/s^2).
+pub const G: f64 = 9.81;
 
 /// The centroid's x at every frame `(t, x)` (the rest state first) and the lags of the
-/// friction's normal forces per step.
-fn slide(resolved: ResolvedScene, nodes: Option<Vec<usize>>) -> (Vec<(f64, f64)>, Vec<usize>) {
+/// friction's normal forces per step; asserts that no accepted state has two triangles of the
+/// bodies' surfaces and the meshed obstacles' intersect.
+pub fn slide(resolved: ResolvedScene, nodes: Option<Vec<usize>>) -> (Vec<(f64, f64)>, Vec<usize>) {
     let nodes = nodes.unwrap_or_else(|| (0..resolved.problem.mesh.num_nodes()).collect());
     let centroid = |x: &[Vec3]| nodes.iter().map(|&n| x[n].x).sum::<f64>() / nodes.len() as f64;
     let mut path = vec![(0.0, centroid(resolved.problem.mesh.nodes()))];
     let mut lags = Vec::new();
+    let surface = surface_with_obstacles(&resolved);
     let stepping: Stepping = resolved.stepping;
     let mut sim = Simulation::new(resolved.problem, resolved.settings).unwrap();
     if let Some(spec) = resolved.surface_contact {
         sim.set_surface_contact(spec).unwrap();
+    }
+    if !resolved.mesh_obstacles.is_empty() {
+        sim.set_mesh_obstacles(resolved.mesh_obstacles).unwrap();
     }
     if let Some(spec) = resolved.friction {
         sim.set_friction(spec).unwrap();
@@ -34,9 +42,32 @@ fn slide(resolved: ResolvedScene, nodes: Option<Vec<usize>>) -> (Vec<(f64, f64)>
     sim.run(stepping, |frame| {
         path.push((frame.state.t, centroid(&frame.state.positions)));
         lags.push(frame.report.friction_lags);
+        let mut x = frame.state.positions.clone();
+        x.extend(frame.mesh_obstacles.iter().flatten());
+        let crossing = intersecting_triangles(&surface, &x);
+        assert!(
+            crossing.is_empty(),
+            "t {}: triangles {crossing:?} intersect",
+            frame.state.t
+        );
     })
     .unwrap();
     (path, lags)
+}
+
+/// The bodies' boundary triangles and the meshed obstacles' after them, numbered as the
+/// surface-contact term numbers them (obstacle vertices after the bodies' nodes).
+fn surface_with_obstacles(resolved: &ResolvedScene) -> ContactSurface {
+    let mesh = &resolved.problem.mesh;
+    let mut triangles = ContactSurface::from_element_surface(&mesh.boundary().unwrap())
+        .triangles()
+        .to_vec();
+    let mut offset = mesh.num_nodes();
+    for o in &resolved.mesh_obstacles {
+        triangles.extend(o.triangles.iter().map(|t| t.map(|v| v + offset)));
+        offset += o.vertices.len();
+    }
+    ContactSurface::from_triangles(triangles)
 }
 
 /// The incline reduced at slope `theta` (degrees) and friction `mu`.
@@ -57,7 +88,7 @@ fn incline(theta: f64, mu: f64) -> ResolvedScene {
 }
 
 /// The least-squares acceleration `2 c2` of `x = c0 + c1 t + c2 t^2` through the points.
-fn fitted_acceleration(path: &[(f64, f64)]) -> f64 {
+pub fn fitted_acceleration(path: &[(f64, f64)]) -> f64 {
     let mut a = nalgebra::Matrix3::zeros();
     let mut b = nalgebra::Vector3::zeros();
     for &(t, x) in path {

@@ -112,10 +112,9 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         .as_ref()
         .zip(surface_contact.as_ref())
         .and_then(|(c, s)| {
-            let analytic: Vec<usize> = (0..scene.obstacles.len())
-                .filter(|&i| !scene.obstacles[i].is_mesh())
-                .collect();
-            friction::friction(c, &bodies, mesh.mesh.num_nodes(), &analytic, s.dhat)
+            let (meshed, analytic): (Vec<usize>, Vec<usize>) =
+                (0..scene.obstacles.len()).partition(|&i| scene.obstacles[i].is_mesh());
+            friction::friction(c, &bodies, [&analytic, &meshed], s.dhat)
         });
     let problem = Problem {
         mesh: mesh.mesh,

@@ -484,13 +484,6 @@ impl Model {
                     "friction between surfaces needs surface contact".into(),
                 ))
             }
-            Some(surfaces) if surfaces.node_bodies.len() != self.mesh.num_nodes() => {
-                return Err(SolverError::InvalidProblem(format!(
-                    "friction: {} node bodies for {} nodes",
-                    surfaces.node_bodies.len(),
-                    self.mesh.num_nodes()
-                )))
-            }
             Some(surfaces) => Some(SurfaceFriction::new(surfaces, spec.epsv)),
         };
         Ok(())

@@ -1,5 +1,6 @@
 //! What a problem asks of friction: lagged smoothed Coulomb friction (Li et al. 2020, sec. 5)
-//! against the analytic obstacles and between surfaces, with one slip length `epsv`.
+//! against the analytic obstacles, between surfaces and against meshed obstacles, with one
+//! slip length `epsv`.
 //!
 //! `epsv` is a length: the slip of a step below which friction is static (smoothed). IPC
 //! states it as a velocity `epsv_v`; over an implicit Euler step `h` the slip is the
@@ -8,15 +9,16 @@
 
 use crate::error::SolverError;
 
-/// Friction between the surfaces of bodies (and of a surface with itself).
+/// Friction between the surfaces of bodies (and of a surface with itself), and against the
+/// meshed obstacles; the body of every node is the surface contact's
+/// ([`crate::terms::SurfaceContact::friction_lag`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceFrictionSpec {
     /// The coefficient of every pair of surfaces without an override.
     pub friction: f64,
-    /// Overrides per pair of bodies `([a, b], mu)` (in either order).
+    /// Overrides per pair of bodies `([a, b], mu)` (in either order); the `k`-th meshed
+    /// obstacle after the `B` bodies is body `B + k`.
     pub pairs: Vec<([usize; 2], f64)>,
-    /// The body of each node.
-    pub node_bodies: Vec<usize>,
 }
 
 /// Friction of a problem: coefficients against the obstacles, between surfaces, and the

@@ -425,7 +425,9 @@ impl Friction<'_> {
             .as_ref()
             .is_none_or(|c| c.lag_friction(self.start, x, self.start_level));
         let surfaces = match (&model.surface_friction, &model.surface_contact) {
-            (Some(friction), Some(contact)) => friction.lag(self.start, x, &contact.pair_forces(x)),
+            (Some(friction), Some(contact)) => {
+                friction.lag(self.start, &contact.friction_lag(x, &self.start_level))
+            }
             _ => true,
         };
         obstacles && surfaces

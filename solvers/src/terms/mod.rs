@@ -11,6 +11,7 @@ mod epidermis;
 mod faces;
 mod inertia;
 mod openings;
+mod pair_rows;
 mod pressure;
 mod surface_contact;
 mod surface_friction;
@@ -26,7 +27,7 @@ pub use inertia::Inertia;
 pub use openings::Openings;
 pub use pressure::FollowerPressure;
 pub use surface_contact::{SurfaceContact, SurfaceContactSpec, SurfaceContactSummary};
-pub use surface_friction::SurfaceFriction;
+pub use surface_friction::{FrictionLag, SurfaceFriction};
 
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;

@@ -12,14 +12,16 @@
 //! Meshed rigid obstacles ([`MeshObstacle`], added by [`SurfaceContact::with_obstacles`])
 //! join the surface: their triangles' vertices follow the bodies' nodes in the term's
 //! position vector, placed at the attempt's load level ([`SurfaceContact::begin_attempt`]);
-//! they are no degrees of freedom, so their gradient entries and Hessian rows are dropped,
-//! and pairs between two obstacle primitives never count.
+//! they are no degrees of freedom, so their gradient entries and Hessian rows are dropped
+//! ([`super::pair_rows`]), and pairs between two obstacle primitives never count.
 
 mod rigid;
 mod step_limit;
 
-use super::{block_pattern, EnergyTerm};
-use crate::contact::{BarrierPotential, PairForce, StiffnessBounds};
+use super::pair_rows::PairRows;
+use super::surface_friction::FrictionLag;
+use super::EnergyTerm;
+use crate::contact::{BarrierPotential, StiffnessBounds};
 use crate::error::SolverError;
 use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::schedule::LoadLevel;
@@ -27,7 +29,6 @@ use isochor_mesh::contact::{
     contact_candidates, intersecting_triangles, Candidates, CcdSettings, ContactSurface, PairFilter,
 };
 use isochor_mesh::Vec3;
-use nalgebra::SMatrix;
 use rigid::RigidSurfaces;
 use std::sync::RwLock;
 
@@ -269,17 +270,24 @@ impl SurfaceContact {
         self.read().candidates.len()
     }
 
-    /// The pairs between body nodes within `dhat` at body positions `x` with their normal
-    /// forces at the current stiffness: what lagged friction is built from (pairs with a
-    /// meshed obstacle have no friction yet).
-    pub fn pair_forces(&self, x: &[Vec3]) -> Vec<PairForce> {
-        let n = self.rigid.num_nodes();
-        let full = self.rigid.extend(x);
-        self.potential()
-            .pair_forces(&self.surface, &self.candidates(&full), &self.rest, &full)
-            .into_iter()
-            .filter(|f| f.nodes.iter().all(|&v| v < n))
-            .collect()
+    /// What friction freezes at body positions `x` (obstacles where they stand now): the
+    /// pairs within `dhat` with their normal forces at the current stiffness, every
+    /// position and its body, and the obstacles' motion since they stood at `start_level`
+    /// (the step's start).
+    pub fn friction_lag(&self, x: &[Vec3], start_level: &LoadLevel) -> FrictionLag {
+        let positions = self.rigid.extend(x).into_owned();
+        let forces = self.potential().pair_forces(
+            &self.surface,
+            &self.candidates(&positions),
+            &self.rest,
+            &positions,
+        );
+        FrictionLag {
+            obstacle_motion: self.rigid.motion_since(start_level),
+            bodies: self.spec.node_bodies.clone(),
+            positions,
+            forces,
+        }
     }
 
     /// The smallest distance between two surface primitives within `dhat` at body
@@ -392,26 +400,12 @@ impl SurfaceContact {
             .collect()
     }
 
-    /// The local indices (of the pair's 12 coordinates) of the pair's degrees of freedom,
-    /// its body nodes' coordinates.
-    fn free_coordinates(&self, nodes: &[usize; 4]) -> impl Iterator<Item = usize> + '_ {
-        let n = self.rigid.num_nodes();
-        let nodes = *nodes;
-        (0..12).filter(move |&l| nodes[l / 3] < n)
-    }
-}
-
-/// Copies the rows and columns `free` of `block` column-major into the front of `out`;
-/// returns the entries written.
-fn copy_free_block(block: &SMatrix<f64, 12, 12>, free: &[usize], out: &mut [f64]) -> usize {
-    let mut written = 0;
-    for &c in free {
-        for &r in free {
-            out[written] = block[(r, c)];
-            written += 1;
+    /// Which of a pair's nodes are degrees of freedom (the bodies').
+    fn rows(&self) -> PairRows {
+        PairRows {
+            num_nodes: self.rigid.num_nodes(),
         }
     }
-    written
 }
 
 impl EnergyTerm for SurfaceContact {
@@ -421,13 +415,10 @@ impl EnergyTerm for SurfaceContact {
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
         let active = self.read();
-        let n = self.rigid.num_nodes();
+        let rows = self.rows();
         BarrierPotential::pair_nodes(&self.surface, &active.candidates, &self.rest)
             .iter()
-            .flat_map(|nodes| {
-                let free: Vec<usize> = nodes.iter().copied().filter(|&v| v < n).collect();
-                block_pattern(&free).collect::<Vec<_>>()
-            })
+            .flat_map(|nodes| rows.pattern(nodes))
             .collect()
     }
 
@@ -465,11 +456,10 @@ impl EnergyTerm for SurfaceContact {
         }
         if let Some(h) = hessian {
             let blocks = potential.hessian_blocks(&self.surface, candidates, &self.rest, &x);
+            let rows = self.rows();
             let mut at = 0;
             for (nodes, block) in &blocks {
-                // Column-major over the free coordinates, as `block_pattern` lists them.
-                let free: Vec<usize> = self.free_coordinates(nodes).collect();
-                at += copy_free_block(block, &free, &mut h[at..]);
+                at += rows.copy_block(nodes, block, &mut h[at..]);
             }
         }
         Ok(energy)

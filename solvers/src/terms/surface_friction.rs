@@ -5,12 +5,18 @@
 //! ([`crate::contact::FrictionPair`]); `x_start` is the step's start, so the slip is the
 //! step's displacement increment (quasi-static) or velocity times time step (dynamics).
 //!
+//! A pair may have a meshed obstacle's vertices among its nodes (numbered after the bodies'
+//! nodes, each obstacle one more body): their motion over the step is prescribed, so the slip
+//! is relative (a moving plate drags a block along), and their rows are no degrees of
+//! freedom ([`super::pair_rows`]).
+//!
 //! The stepping driver lags the pairs at the step's start, solves, and lags them again at
 //! the solution until their forces settle (a bounded number of times). The pairs, and so the
 //! Hessian pattern, change only at those lags.
 
 use super::contact::FRICTION_SETTLED;
-use super::{block_pattern, EnergyTerm};
+use super::pair_rows::PairRows;
+use super::EnergyTerm;
 use crate::contact::{FrictionPair, PairForce};
 use crate::error::SolverError;
 use crate::problem::friction::SurfaceFrictionSpec;
@@ -18,10 +24,27 @@ use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 use std::sync::{RwLock, RwLockReadGuard};
 
-/// The frozen pairs and the step's start positions.
+/// What the barrier hands friction at a lagged state
+/// ([`super::SurfaceContact::friction_lag`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrictionLag {
+    /// Every position: the bodies' nodes, then the meshed obstacles' vertices where they
+    /// stand.
+    pub positions: Vec<Vec3>,
+    /// The body of every position (meshed obstacle `k` after `B` bodies is body `B + k`).
+    pub bodies: Vec<usize>,
+    /// The motion of every obstacle vertex over the step (from where it stood at the step's
+    /// start), in the order of `positions`.
+    pub obstacle_motion: Vec<Vec3>,
+    /// The barrier's pairs within `dhat` with their normal forces.
+    pub forces: Vec<PairForce>,
+}
+
+/// The frozen pairs, the step's start positions and the obstacles' motion over the step.
 #[derive(Debug, Default)]
 struct Lagged {
     start: Vec<Vec3>,
+    obstacle_motion: Vec<Vec3>,
     pairs: Vec<([usize; 4], FrictionPair)>,
     /// Whether the pairs' nodes changed since the pattern was last taken.
     pattern_changed: bool,
@@ -33,6 +56,15 @@ pub struct SurfaceFriction {
     spec: SurfaceFrictionSpec,
     epsv: f64,
     lagged: RwLock<Lagged>,
+}
+
+impl Lagged {
+    /// The pairs' degrees of freedom: the bodies' nodes, those of the start positions.
+    fn rows(&self) -> PairRows {
+        PairRows {
+            num_nodes: self.start.len(),
+        }
+    }
 }
 
 impl SurfaceFriction {
@@ -49,14 +81,14 @@ impl SurfaceFriction {
         self.lagged.read().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Freezes the pairs `forces` (the barrier's pairs within `dhat` at the lagged state,
-    /// [`super::SurfaceContact::pair_forces`]) with `positions` their nodes' lagged
-    /// positions, the slip measured from `start`; returns whether the lagged forces `mu
-    /// lambda` settled: the same pairs, none moved by more than 1% of the
+    /// Freezes the pairs of `lag` (the barrier's at the lagged state), the slip of the
+    /// bodies' nodes measured from their positions `start`; returns whether the lagged
+    /// forces `mu lambda` settled: the same pairs, none moved by more than 1% of the
     /// largest.
-    pub fn lag(&self, start: &[Vec3], positions: &[Vec3], forces: &[PairForce]) -> bool {
-        let bodies = &self.spec.node_bodies;
-        let pairs: Vec<([usize; 4], FrictionPair)> = forces
+    pub fn lag(&self, start: &[Vec3], lag: &FrictionLag) -> bool {
+        let bodies = &lag.bodies;
+        let pairs: Vec<([usize; 4], FrictionPair)> = lag
+            .forces
             .iter()
             .filter_map(|f| {
                 // Side one is node 0 (the point, or the first edge), side two node 3.
@@ -64,7 +96,7 @@ impl SurfaceFriction {
                     .spec
                     .coefficient(bodies[f.nodes[0]], bodies[f.nodes[3]]);
                 (mu > 0.0).then(|| {
-                    let y = f.nodes.map(|n| positions[n]);
+                    let y = f.nodes.map(|n| lag.positions[n]);
                     (
                         f.nodes,
                         FrictionPair::new(f.kind, &y, mu * f.lambda, self.epsv),
@@ -84,6 +116,7 @@ impl SurfaceFriction {
         lagged.pattern_changed |= !same_nodes;
         lagged.pairs = pairs;
         lagged.start = start.to_vec();
+        lagged.obstacle_motion = lag.obstacle_motion.clone();
         settled
     }
 
@@ -105,10 +138,12 @@ impl EnergyTerm for SurfaceFriction {
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        self.read()
+        let lagged = self.read();
+        let rows = lagged.rows();
+        lagged
             .pairs
             .iter()
-            .flat_map(|(nodes, _)| block_pattern(nodes).collect::<Vec<_>>())
+            .flat_map(|(nodes, _)| rows.pattern(nodes))
             .collect()
     }
 
@@ -122,17 +157,21 @@ impl EnergyTerm for SurfaceFriction {
         mut hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         let lagged = self.read();
+        let rows = lagged.rows();
         let mut energy = 0.0;
-        for (k, (nodes, pair)) in lagged.pairs.iter().enumerate() {
-            let u = nodes.map(|n| x[n] - lagged.start[n]);
+        let mut at = 0;
+        for (nodes, pair) in &lagged.pairs {
+            let u = nodes.map(|n| match n.checked_sub(rows.num_nodes) {
+                None => x[n] - lagged.start[n],
+                Some(vertex) => lagged.obstacle_motion[vertex],
+            });
             let d = pair.derivatives(&u);
             energy += d.value;
             if let Some(g) = gradient.as_deref_mut() {
-                super::scatter(nodes, d.gradient.as_slice(), g);
+                rows.scatter(nodes, d.gradient.as_slice(), g);
             }
             if let Some(h) = hessian.as_deref_mut() {
-                // Column-major, as `block_pattern` lists the entries.
-                h[144 * k..144 * (k + 1)].copy_from_slice(d.hessian.as_slice());
+                at += rows.copy_block(nodes, &d.hessian, &mut h[at..]);
             }
         }
         if !energy.is_finite() {

@@ -113,6 +113,17 @@ impl RigidSurfaces {
             .collect()
     }
 
+    /// The motion of every vertex from where `level` places it to where it stands now.
+    pub fn motion_since(&self, level: &LoadLevel) -> Vec<Vec3> {
+        let then = Self::place(&self.obstacles, level);
+        self.read()
+            .current
+            .iter()
+            .zip(then)
+            .map(|(now, then)| now - then)
+            .collect()
+    }
+
     /// Places the obstacles at `level` for an attempt; returns the placement the last
     /// accepted step left (if known) and the new one, for the check that the motion
     /// crosses no body.
