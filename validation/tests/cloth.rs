@@ -3,12 +3,16 @@
 //!   hinge (Grinspun et al. 2003): energy, gradient and Hessian against central differences at
 //!   stretched, compressed and sheared triangles and at flat, bent and nearly folded hinges;
 //! - the membrane under a uniform in-plane stretch against the closed form of its stress;
-//! - a strip bent to a circular arc against the plate energy `(D / 2) int kappa^2 dA`.
+//! - a strip bent to a circular arc against the plate energy `(D / 2) int kappa^2 dA`;
+//! - the assembled cloth term of `isochor_solvers::terms::Cloth` on a small sheet.
 
 use isochor_energies::cloth::bending::{dihedral_angle, RestHinge};
 use isochor_energies::cloth::membrane::{energy_gradient_hessian, second_piola_kirchhoff};
 use isochor_energies::cloth::Fabric;
 use isochor_energies::triangle::{reduced_deformation_gradient, RestTriangle};
+use isochor_mesh::Vec3;
+use isochor_solvers::terms::{Cloth, EnergyTerm};
+use isochor_solvers::LoadLevel;
 use isochor_validation::fd;
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Rotation3, Unit, Vector3};
 use proptest::prelude::*;
@@ -261,4 +265,107 @@ fn bent_strip_energy(fabric: &Fabric, n: usize, length: f64, width: f64, radius:
         }
     }
     energy
+}
+
+/// A sheet of `n x n` squares (each split by one diagonal) of side `size`, in the plane z = 0.
+fn sheet(n: usize, size: f64) -> (Vec<Vec3>, Vec<[usize; 3]>) {
+    let node = |i: usize, j: usize| i * (n + 1) + j;
+    let nodes = (0..=n)
+        .flat_map(|i| (0..=n).map(move |j| Vec3::new(i as f64, j as f64, 0.0) * (size / n as f64)))
+        .collect();
+    let triangles = (0..n)
+        .flat_map(|i| {
+            (0..n).flat_map(move |j| {
+                [
+                    [node(i, j), node(i + 1, j), node(i + 1, j + 1)],
+                    [node(i, j), node(i + 1, j + 1), node(i, j + 1)],
+                ]
+            })
+        })
+        .collect();
+    (nodes, triangles)
+}
+
+/// The cloth term's energy, gradient and dense Hessian at `x`.
+fn evaluate_term(term: &Cloth, x: &[Vec3]) -> (f64, DVector<f64>, DMatrix<f64>) {
+    let n = 3 * x.len();
+    let pattern = term.hessian_pattern();
+    let mut gradient = vec![0.0; n];
+    let mut values = vec![0.0; pattern.len()];
+    let level = LoadLevel::quasi_static(1.0);
+    let e = term
+        .evaluate(x, &level, Some(&mut gradient), Some(&mut values))
+        .unwrap();
+    let mut h = DMatrix::zeros(n, n);
+    for (&(r, c), v) in pattern.iter().zip(&values) {
+        h[(r, c)] += v;
+    }
+    (e, DVector::from_vec(gradient), h)
+}
+
+fn positions(y: &DVector<f64>) -> Vec<Vec3> {
+    y.as_slice()
+        .chunks_exact(3)
+        .map(|p| Vec3::new(p[0], p[1], p[2]))
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(6))]
+
+    /// The assembled term on a 2x2 sheet with `rest_scale` 0.9: its gradient against central
+    /// differences of its energy at crumpled states; where every element is convex (the sheet
+    /// stretched flat, each hinge at its rest angle) its Hessian against differences of the
+    /// gradient, and everywhere symmetric and positive semidefinite (the projection).
+    #[test]
+    fn cloth_term_gradient_and_hessian_match_central_differences(
+        stretch in 1.0..1.3f64,
+        bumps in proptest::collection::vec(-1.0..1.0f64, 9 * 3),
+    ) {
+        let (rest, triangles) = sheet(2, 0.02);
+        let term = Cloth::new(&rest, triangles, fabric(), 0.9).unwrap();
+        prop_assert_eq!(term.num_hinges(), 3 * 2 * 2 - 2 * 2);
+        let h = 1e-6 * 0.01;
+        let flat: Vec<Vec3> = rest.iter().map(|p| p * (0.9 * stretch)).collect();
+        let crumpled: Vec<Vec3> = rest
+            .iter()
+            .zip(bumps.chunks_exact(3))
+            .map(|(p, b)| p * stretch + Vec3::new(b[0], b[1], b[2]) * 0.002)
+            .collect();
+        for (x, convex) in [(&flat, true), (&crumpled, false)] {
+            let (_, g, hess) = evaluate_term(&term, x);
+            let at = DVector::from_iterator(3 * x.len(), x.iter().flat_map(|p| p.iter().copied()));
+            let energy = |y: &DVector<f64>| evaluate_term(&term, &positions(y)).0;
+            let scale = fabric().mu() * fabric().thickness() * 0.01;
+            let g_error = fd::relative_error_vec(&g, &fd::gradient(energy, &at, h), scale * 1e-3);
+            prop_assert!(g_error < 1e-6, "gradient error {g_error:e}");
+            prop_assert!((hess.clone() - hess.transpose()).amax() <= 1e-12 * hess.amax());
+            let smallest = hess.clone().symmetric_eigenvalues().min();
+            prop_assert!(smallest >= -1e-9 * hess.amax(), "eigenvalue {smallest:e}");
+            if convex {
+                let gradient = |y: &DVector<f64>| evaluate_term(&term, &positions(y)).1;
+                let h_error = fd::relative_error(&hess, &fd::jacobian(gradient, &at, h), 1e-3 * hess.amax());
+                prop_assert!(h_error < 1e-5, "Hessian error {h_error:e}");
+            }
+        }
+    }
+}
+
+/// Bad sheets are errors naming what is wrong: a non-positive `rest_scale`, a degenerate
+/// triangle, an edge shared by three triangles.
+#[test]
+fn cloth_term_refuses_bad_sheets() {
+    let (rest, triangles) = sheet(1, 0.01);
+    let message = |r: Result<Cloth, isochor_solvers::SolverError>| r.unwrap_err().to_string();
+    assert!(message(Cloth::new(&rest, triangles.clone(), fabric(), 0.0)).contains("rest_scale"));
+    let mut degenerate = rest.clone();
+    degenerate[3] = degenerate[0];
+    assert!(
+        message(Cloth::new(&degenerate, triangles.clone(), fabric(), 1.0)).contains("degenerate")
+    );
+    let (mut fin_rest, mut fin) = (rest.clone(), triangles.clone());
+    fin_rest.push(Vec3::new(0.005, 0.005, 0.005));
+    fin.push([3, 0, 4]);
+    let error = message(Cloth::new(&fin_rest, fin, fabric(), 1.0));
+    assert!(error.contains("shared by 3"), "{error}");
 }
