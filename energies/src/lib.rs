@@ -30,6 +30,8 @@
 //!   and Hessian of an element of any number of nodes, 4- and 10-node tets), [`tet`] (its
 //!   one-point 4-node case with fixed-size types), [`triangle`] (the area element and `J~` of
 //!   3- and 6-node faces), [`Epidermis`] (eq. 16 of Sheen et al. 2021), [`project_to_psd`];
+//! - [`cloth`]: a fabric sheet's membrane (Saint Venant-Kirchhoff, plane stress) per triangle
+//!   and its discrete-shell bending (Grinspun et al. 2003) per hinge;
 //! - [`kinematics`]: `vec`, `cof F = dJ/dF`, `d2J/dF2`, shared by every `J`-based term, and
 //!   the isochoric invariants `Ib1 = J^-2/3 I_1`, `Ib2 = J^-4/3 I_2` with their gradients,
 //!   Hessians and the chain rule of a density `W(Ib1, Ib2)`
@@ -37,6 +39,7 @@
 
 #![deny(missing_docs)]
 
+pub mod cloth;
 mod composed;
 mod epidermis;
 mod error;

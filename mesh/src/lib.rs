@@ -33,7 +33,7 @@ pub use error::MeshError;
 pub use groups::{PhysicalGroup, PhysicalGroups};
 pub use locate::TetLocator;
 pub use selection::{FaceSelection, Region, VertexSelection};
-pub use surface::{check_closed_manifold, BoundarySurface, TET_FACES};
+pub use surface::{check_closed_manifold, hinges, BoundarySurface, TET_FACES};
 pub use tet_mesh::{shape_matrix, signed_volume, Orientation, TetMesh, DEGENERACY};
 pub use zones::Zones;
 

@@ -176,23 +176,73 @@ impl TetMesh {
 /// [`MeshError::InconsistentOrientation`]. Two solids touching at a single vertex are not
 /// detected (no edge is affected).
 pub fn check_closed_manifold(triangles: &[[usize; 3]]) -> Result<(), MeshError> {
-    // (sorted edge, +1 if traversed from the smaller vertex to the larger, else -1)
-    let mut edges: Vec<([usize; 2], i8)> = triangles
-        .iter()
-        .flat_map(|t| (0..3).map(move |i| (t[i], t[(i + 1) % 3])))
-        .map(|(a, b)| if a < b { ([a, b], 1) } else { ([b, a], -1) })
-        .collect();
-    edges.sort_unstable();
-    for run in edges.chunk_by(|a, b| a.0 == b.0) {
-        let edge = run[0].0;
-        match run.len() {
-            1 => return Err(MeshError::OpenBoundary { edge }),
-            2 if run[0].1 == run[1].1 => return Err(MeshError::InconsistentOrientation { edge }),
-            2 => {}
-            count => return Err(MeshError::NonManifoldEdge { edge, count }),
+    for run in edge_runs(triangles).chunk_by(|a, b| a.edge == b.edge) {
+        if run.len() == 1 {
+            return Err(MeshError::OpenBoundary { edge: run[0].edge });
         }
+        manifold_pair(run)?;
     }
     Ok(())
+}
+
+/// The hinges of a consistently oriented manifold triangle surface, open or closed: for every
+/// edge shared by two triangles `(a, b, c)` and `(b, a, d)`, the four vertices `[a, b, c, d]`
+/// (the shared edge first, then the vertex opposite it in each triangle), ordered by edge.
+/// Boundary edges (one triangle) have no hinge. Errors as [`check_closed_manifold`] on an
+/// edge shared by more than two triangles or traversed twice in one direction.
+pub fn hinges(triangles: &[[usize; 3]]) -> Result<Vec<[usize; 4]>, MeshError> {
+    let mut hinges = Vec::new();
+    for run in edge_runs(triangles).chunk_by(|a, b| a.edge == b.edge) {
+        if run.len() > 1 {
+            manifold_pair(run)?;
+            let (first, second) = (&run[0], &run[1]);
+            hinges.push([first.from, first.to, first.opposite, second.opposite]);
+        }
+    }
+    Ok(hinges)
+}
+
+/// One triangle's traversal of one of its edges.
+struct EdgeUse {
+    /// The edge's vertices, sorted.
+    edge: [usize; 2],
+    /// The edge's vertices in the triangle's order.
+    from: usize,
+    to: usize,
+    /// The triangle's third vertex.
+    opposite: usize,
+}
+
+/// Every edge traversal of `triangles`, sorted by edge (the traversal from the smaller vertex
+/// first).
+fn edge_runs(triangles: &[[usize; 3]]) -> Vec<EdgeUse> {
+    let mut uses: Vec<EdgeUse> = triangles
+        .iter()
+        .flat_map(|t| {
+            (0..3).map(move |i| EdgeUse {
+                edge: [t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3])],
+                from: t[i],
+                to: t[(i + 1) % 3],
+                opposite: t[(i + 2) % 3],
+            })
+        })
+        .collect();
+    uses.sort_unstable_by_key(|u| (u.edge, u.from != u.edge[0], u.opposite));
+    uses
+}
+
+/// A run of two or more traversals of one edge: an error unless exactly two, in opposite
+/// directions.
+fn manifold_pair(run: &[EdgeUse]) -> Result<(), MeshError> {
+    let edge = run[0].edge;
+    match run {
+        [a, b] if a.from == b.from => Err(MeshError::InconsistentOrientation { edge }),
+        [_, _] => Ok(()),
+        _ => Err(MeshError::NonManifoldEdge {
+            edge,
+            count: run.len(),
+        }),
+    }
 }
 
 #[cfg(test)]
@@ -333,6 +383,27 @@ mod tests {
         assert!(matches!(
             e,
             MeshError::InconsistentOrientation { edge: [0, 1] }
+        ));
+    }
+
+    #[test]
+    fn hinges_of_an_open_strip_pair_each_shared_edge_with_its_opposite_vertices() {
+        // A square split along its diagonal 0-2, plus a triangle on the edge 1-2.
+        let triangles = [[0, 1, 2], [0, 2, 3], [2, 1, 4]];
+        let h = hinges(&triangles).unwrap();
+        assert_eq!(h, vec![[0, 2, 3, 1], [1, 2, 0, 4]]);
+        let folded = [[0, 1, 2], [0, 1, 3]];
+        assert!(matches!(
+            hinges(&folded),
+            Err(MeshError::InconsistentOrientation { edge: [0, 1] })
+        ));
+        let fin = [[0, 1, 2], [1, 0, 3], [0, 1, 4]];
+        assert!(matches!(
+            hinges(&fin),
+            Err(MeshError::NonManifoldEdge {
+                edge: [0, 1],
+                count: 3
+            })
         ));
     }
 }

@@ -3,6 +3,7 @@
 //! file. Each module is one file of this folder; `.ci/run` checks that every file is listed.
 
 mod assembled;
+mod cloth;
 mod common;
 mod constraints;
 mod contact_geometry;

@@ -3,6 +3,7 @@
 //! line searches use to back off (the "Form" contract of polyfem).
 
 mod augmented;
+mod cloth;
 mod contact;
 mod dead_load;
 mod elastic;
@@ -17,6 +18,7 @@ mod surface_contact;
 mod surface_friction;
 
 pub use augmented::AugmentedConstraints;
+pub use cloth::Cloth;
 pub use contact::{Contact, ContactState, ContactSummary};
 pub use dead_load::DeadLoad;
 pub use elastic::{elastic_rule, Elastic};

@@ -1,0 +1,165 @@
+//! A cloth sheet's stored energy: the membrane of every triangle and the discrete-shell
+//! bending of every interior edge (`isochor_energies::cloth`), over the sheet's nodes among
+//! the problem's. The element Hessians are projected onto the PSD cone (a sheet under
+//! compression buckles, and a hinge away from its rest angle is indefinite), so that Newton
+//! steps descend.
+
+use super::{block_pattern, scatter, EnergyTerm};
+use crate::error::SolverError;
+use crate::problem::schedule::LoadLevel;
+use isochor_energies::cloth::bending::RestHinge;
+use isochor_energies::cloth::membrane::energy_gradient_hessian;
+use isochor_energies::cloth::Fabric;
+use isochor_energies::project_to_psd;
+use isochor_energies::triangle::RestTriangle;
+use isochor_mesh::{hinges, Vec3};
+use rayon::prelude::*;
+
+/// Membrane and bending energy of one cloth sheet.
+#[derive(Debug)]
+pub struct Cloth {
+    fabric: Fabric,
+    triangles: Vec<[usize; 3]>,
+    rest_triangles: Vec<RestTriangle>,
+    hinges: Vec<[usize; 4]>,
+    rest_hinges: Vec<RestHinge>,
+}
+
+impl Cloth {
+    /// The sheet of consistently oriented `triangles` (indices into `rest`, the problem's rest
+    /// positions) of `fabric`, whose rest lengths are those of `rest` times `rest_scale` (a
+    /// band with `rest_scale < 1` is tighter than its placement). Errors name a degenerate
+    /// triangle or hinge and a non-manifold or inconsistently oriented edge.
+    pub fn new(
+        rest: &[Vec3],
+        triangles: Vec<[usize; 3]>,
+        fabric: Fabric,
+        rest_scale: f64,
+    ) -> Result<Self, SolverError> {
+        if !(rest_scale.is_finite() && rest_scale > 0.0) {
+            return Err(SolverError::InvalidProblem(format!(
+                "the cloth's rest_scale = {rest_scale} must be finite and positive"
+            )));
+        }
+        let scaled = |nodes: &[usize]| -> Vec<Vec3> {
+            nodes.iter().map(|&v| rest[v] * rest_scale).collect()
+        };
+        let rest_triangles = triangles
+            .iter()
+            .enumerate()
+            .map(|(t, nodes)| {
+                let p = scaled(nodes);
+                RestTriangle::new(&[p[0], p[1], p[2]]).ok_or_else(|| {
+                    SolverError::InvalidProblem(format!(
+                        "cloth triangle {t} {nodes:?} is degenerate"
+                    ))
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let hinges = hinges(&triangles)?;
+        let rest_hinges = hinges
+            .iter()
+            .map(|nodes| {
+                let p = scaled(nodes);
+                RestHinge::new(&fabric, &[p[0], p[1], p[2], p[3]]).ok_or_else(|| {
+                    SolverError::InvalidProblem(format!("cloth hinge {nodes:?} is degenerate"))
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Cloth {
+            fabric,
+            triangles,
+            rest_triangles,
+            hinges,
+            rest_hinges,
+        })
+    }
+
+    /// Number of interior edges (hinges).
+    pub fn num_hinges(&self) -> usize {
+        self.hinges.len()
+    }
+}
+
+/// One element's energy, its gradient and its projected Hessian (column-major).
+type Local = (f64, Vec<f64>, Vec<f64>);
+
+impl Cloth {
+    fn membrane(&self, x: &[Vec3], t: usize) -> Local {
+        let nodes = &self.triangles[t];
+        let terms =
+            energy_gradient_hessian(&self.fabric, &nodes.map(|v| x[v]), &self.rest_triangles[t]);
+        (
+            terms.energy,
+            terms.gradient.as_slice().to_vec(),
+            project_to_psd(&terms.hessian).as_slice().to_vec(),
+        )
+    }
+
+    fn bending(&self, x: &[Vec3], h: usize) -> Result<Local, SolverError> {
+        let nodes = &self.hinges[h];
+        let terms = self.rest_hinges[h]
+            .energy_gradient_hessian(&nodes.map(|v| x[v]))
+            .ok_or_else(|| {
+                SolverError::InvalidProblem(format!(
+                    "a triangle of cloth hinge {nodes:?} has collapsed"
+                ))
+            })?;
+        Ok((
+            terms.energy,
+            terms.gradient.as_slice().to_vec(),
+            project_to_psd(&terms.hessian).as_slice().to_vec(),
+        ))
+    }
+}
+
+impl EnergyTerm for Cloth {
+    fn name(&self) -> &'static str {
+        "cloth"
+    }
+
+    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        let triangles = self.triangles.iter().flat_map(|t| block_pattern(t));
+        let hinges = self.hinges.iter().flat_map(|h| block_pattern(h));
+        triangles.chain(hinges).collect()
+    }
+
+    fn evaluate(
+        &self,
+        x: &[Vec3],
+        _level: &LoadLevel,
+        gradient: Option<&mut [f64]>,
+        hessian: Option<&mut [f64]>,
+    ) -> Result<f64, SolverError> {
+        // Elements evaluated in parallel, then summed in element order (resumed runs must
+        // equal uninterrupted ones bit for bit).
+        let membranes: Vec<Local> = (0..self.triangles.len())
+            .into_par_iter()
+            .map(|t| self.membrane(x, t))
+            .collect();
+        let hinges: Vec<Local> = (0..self.hinges.len())
+            .into_par_iter()
+            .map(|h| self.bending(x, h))
+            .collect::<Result<_, _>>()?;
+        let nodes = self
+            .triangles
+            .iter()
+            .map(|t| t.as_slice())
+            .chain(self.hinges.iter().map(|h| h.as_slice()));
+        let locals = membranes.iter().chain(&hinges);
+        let mut energy = 0.0;
+        let (mut gradient, mut hessian) = (gradient, hessian);
+        let mut offset = 0;
+        for (nodes, (e, g, h)) in nodes.zip(locals) {
+            energy += e;
+            if let Some(out) = gradient.as_deref_mut() {
+                scatter(nodes, g, out);
+            }
+            if let Some(out) = hessian.as_deref_mut() {
+                out[offset..offset + h.len()].copy_from_slice(h);
+            }
+            offset += h.len();
+        }
+        Ok(energy)
+    }
+}
