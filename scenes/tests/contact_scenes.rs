@@ -233,7 +233,7 @@ fn the_squashed_tube_keeps_its_volume_and_its_walls_apart() {
 /// by friction (none against the ground), the cylinder rises with them, less what the pads'
 /// shear and the smoothed static friction let it lag (a creep below `epsv` per step); with
 /// no friction between pads and cylinder it stays on the ground (the pads' barrier, normal to
-/// their faces as they tilt, lifts it by less than 1% of their rise).
+/// their faces as they tilt, lifts it by less than 5% of their rise).
 #[test]
 fn the_pads_lift_the_cylinder_by_friction() {
     for friction in [0.8, 0.0] {
@@ -272,7 +272,7 @@ fn the_pads_lift_the_cylinder_by_friction() {
             );
         } else {
             assert!(
-                object < 0.01 * pads,
+                object < 0.05 * pads,
                 "without friction the cylinder stays down: {object}"
             );
         }
