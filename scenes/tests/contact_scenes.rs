@@ -38,7 +38,7 @@ struct Ran {
 fn run_checked(scene: &Scene, mut observe: impl FnMut(&ElementMesh, &Frame<'_>)) -> Ran {
     let resolved = build(scene).unwrap();
     let mesh = resolved.problem.mesh.clone();
-    let mut sim = Simulation::new(resolved.problem, resolved.settings.clone()).unwrap();
+    let mut sim = Simulation::new(resolved.problem, resolved.settings).unwrap();
     if let Some(v) = resolved.bodies.initial_velocities(mesh.num_nodes()) {
         sim.set_velocities(v).unwrap();
     }
