@@ -67,9 +67,12 @@ fn every_builtin_scene_parses_and_builds_a_problem() {
         assert!(!scene.probes.is_empty(), "{name} has no probes");
         let built = build(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(built.problem.mesh.num_elements() > 0);
+        // Something drives every scene: a support, an obstacle, or (in free flight) a body's
+        // initial velocity.
+        let launched = scene.bodies.iter().any(|b| b.velocity.is_some());
         assert!(
-            !built.problem.dirichlet.is_empty() || !built.problem.obstacles.is_empty(),
-            "{name} has no Dirichlet condition or obstacle"
+            !built.problem.dirichlet.is_empty() || !built.problem.obstacles.is_empty() || launched,
+            "{name} has no Dirichlet condition, obstacle or initial velocity"
         );
         for d in &built.problem.dirichlet {
             assert!(!d.nodes.is_empty());

@@ -37,6 +37,9 @@ pub const BUILTIN: &[(&str, &str)] = builtin_scenes![
     "band",
     "squeezed-creature",
     "incline",
+    "colliding-balls",
+    "squashed-tube",
+    "grasp",
 ];
 
 /// The TOML text of a built-in scene.
