@@ -11,6 +11,7 @@ mod cli;
 mod common;
 mod compare;
 mod contact;
+mod finger_volume;
 mod frames;
 mod mesh_obstacles;
 mod outputs;

@@ -395,6 +395,7 @@ pinned_scenes! {
     band => "band",
     squeezed_creature => "squeezed-creature",
     incline => "incline",
+    finger_volume => "finger-volume",
 }
 
 /// Every built-in scene has its pin tests, and every record of group `scenes` names one of

@@ -37,6 +37,7 @@ pub const BUILTIN: &[(&str, &str)] = builtin_scenes![
     "band",
     "squeezed-creature",
     "incline",
+    "finger-volume",
 ];
 
 /// The TOML text of a built-in scene.
