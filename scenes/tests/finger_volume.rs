@@ -4,6 +4,7 @@
 //! chambers' volume and the bend keep growing.
 
 use isochor_scenes::{builtin, load_scene, run_scene, Override, RunOptions, RunResult};
+use std::path::Path;
 
 /// Runs a built-in scene (its only variant, or none) with `sets` applied.
 fn run(name: &str, sets: &[&str]) -> RunResult {
@@ -67,4 +68,44 @@ fn volume_control_passes_the_limit_point_where_pressure_control_stops() {
             w[1].step
         );
     }
+}
+
+/// The PneuNet of the test data (`pneunet-v41.msh`, 9,834 tets; E = 100 kPa, nu = 0.49,
+/// `mixed-p1`) driven by volume to 6 times its chambers' rest volume in 24 steps, its inlet
+/// capped: its pressure peaks (about 12.8 kPa near V/V0 = 3.4, where the pressure ramp of
+/// issue 31 failed) and falls by a third while the actuator curls on, its tip past 60
+/// degrees. Run with `--ignored` (57 s of CPU, 250 s wall on the shared 2-core machine, dev
+/// profile, 2026-12-02).
+#[test]
+#[ignore]
+fn the_pneunet_curls_past_its_limit_point_under_volume_control() {
+    let mesh = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pneunet-v41.msh");
+    let sets = [
+        "loads.pressure.0.cap_openings=true".to_string(),
+        format!("mesh={}", mesh.display()),
+        "nu=0.49".into(),
+        // The file's groups are `base` and `chamber`; the tip is its end face x = 0.10 m.
+        "selections.tip={ plane = { point = [0.10, 0.0, 0.0], normal = [1.0, 0.0, 0.0] } }".into(),
+    ];
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let r = run("finger-volume", &sets);
+    assert!(r.converged, "{:?}", r.error);
+    let p = pressures(&r);
+    let (top, peak) = p.iter().enumerate().fold(
+        (0, 0.0),
+        |best, (i, &v)| if v > best.1 { (i, v) } else { best },
+    );
+    let rotation = |i: usize| r.history[i].probes["tip_rotation"];
+    let last = p.len() - 1;
+    eprintln!(
+        "peak {peak:.0} Pa at V/V0 {:.3}, {:.1} deg; at V/V0 6: {:.0} Pa, {:.1} deg; {} Newton iterations, {:.1} s",
+        r.history[top].probes["volume_ratio"],
+        rotation(top),
+        p[last],
+        rotation(last),
+        r.newton_iterations,
+        r.wall_time_s
+    );
+    assert!(top < last && p[last] < 0.8 * peak, "{p:?}");
+    assert!(rotation(last) > rotation(top) && rotation(last) > 45.0);
 }
