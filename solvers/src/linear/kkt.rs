@@ -89,7 +89,7 @@ pub struct KktOptions {
     pub zero_pivot_tolerance: f64,
     /// Most iterative refinement steps per solve.
     pub max_refinement_steps: usize,
-    /// Refinement stops once the relative residual in the scaled space,
+    /// Refinement stops once the relative residual, the smaller of `|b - A x| / |b|` and
     /// `|S (b - A x)| / |S b|` (`S` the diagonal scaling), is below this.
     pub refinement_tolerance: f64,
     /// A solve whose final relative residual exceeds this is an error
@@ -519,8 +519,8 @@ impl KktSolver {
 
     /// Solves `[[K, G^T], [G, -C]] (du, dp) = (f, g)` in place: `rhs` holds `(f, g)`
     /// (length `n + m`) on entry and `(du, dp)` on return. Refines iteratively against
-    /// the unregularized matrix and records the final relative residual (scaled,
-    /// `|S (b - A x)| / |S b|`) in the report.
+    /// the unregularized matrix and records the final relative residual (the smaller of
+    /// the unscaled and the scaled one) in the report.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let start = Instant::now();
         let dim = self.n + self.m;
@@ -565,11 +565,12 @@ impl KktSolver {
         Ok(x)
     }
 
-    /// `x = S y` with `(S A S) y = S b`, refined on the residual `b - A x`, which is
-    /// measured in the scaled space, `|S (b - A x)| / |S b|`: the residual of the system the
-    /// factor solves. Unscaled, the rows of large entries (stiffnesses of `E h` in `K`)
-    /// would weigh their rounding against a right-hand side carried by rows of small ones
-    /// (a cavity's volume row), and refuse solutions that are backward stable.
+    /// `x = S y` with `(S A S) y = S b`, refined on the residual `b - A x`, measured as the
+    /// smaller of two relative residuals: the system's, `|b - A x| / |b|`, and that of the
+    /// scaled system the factor solves, `|S (b - A x)| / |S b|`. Unscaled, the rows of large
+    /// entries (stiffnesses of `E h` in `K`) weigh their rounding against a right-hand side
+    /// carried by rows of small ones (a cavity's volume row) and refuse backward-stable
+    /// solutions; scaled, the slowly refined modes of regularized pivots can weigh more.
     fn solve_refined(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let dim = rhs.len();
         // Permuted, scaled right-hand side and residual.
@@ -578,8 +579,8 @@ impl KktSolver {
         let b = r.clone();
         let scaled_norm =
             |v: &[f64]| norm(&v.iter().zip(&s).map(|(vi, si)| vi * si).collect::<Vec<_>>());
-        let b_norm = scaled_norm(&b);
-        let b_norm = if b_norm > 0.0 { b_norm } else { 1.0 };
+        let positive = |x: f64| if x > 0.0 { x } else { 1.0 };
+        let (b_norm, b_scaled_norm) = (positive(norm(&b)), positive(scaled_norm(&b)));
         let mut y = vec![0.0; dim];
         let mut ay = vec![0.0; dim];
         let mut residual = 1.0;
@@ -594,7 +595,7 @@ impl KktSolver {
             for i in 0..dim {
                 r[i] = b[i] - ay[i] / s[i];
             }
-            let new_residual = scaled_norm(&r) / b_norm;
+            let new_residual = (norm(&r) / b_norm).min(scaled_norm(&r) / b_scaled_norm);
             if !new_residual.is_finite() {
                 break;
             }

@@ -58,7 +58,7 @@ pub struct SolveReport {
     /// Iterative refinement steps of the latest solve.
     pub refinement_steps: usize,
     /// Final relative residual of the latest solve (against the unregularized matrix,
-    /// `NaN` if not computed): `|b - A x| / |b|` for `LL^T`, and for the KKT solver in its
-    /// scaled space, `|S (b - A x)| / |S b|` with `S` its diagonal scaling.
+    /// `NaN` if not computed): `|b - A x| / |b|` for `LL^T`; for the KKT solver the smaller
+    /// of that and `|S (b - A x)| / |S b|`, `S` its diagonal scaling.
     pub residual: f64,
 }
