@@ -40,6 +40,7 @@ pub const BUILTIN: &[(&str, &str)] = builtin_scenes![
     "colliding-balls",
     "squashed-tube",
     "grasp",
+    "finger-volume",
 ];
 
 /// The TOML text of a built-in scene.

@@ -89,7 +89,8 @@ pub struct KktOptions {
     pub zero_pivot_tolerance: f64,
     /// Most iterative refinement steps per solve.
     pub max_refinement_steps: usize,
-    /// Refinement stops once the relative residual `|b - A x| / |b|` is below this.
+    /// Refinement stops once the relative residual, the smaller of `|b - A x| / |b|` and
+    /// `|S (b - A x)| / |S b|` (`S` the diagonal scaling), is below this.
     pub refinement_tolerance: f64,
     /// A solve whose final relative residual exceeds this is an error
     /// ([`LinearError::InaccurateSolution`]) unless the `LU` fallback does better.
@@ -518,7 +519,8 @@ impl KktSolver {
 
     /// Solves `[[K, G^T], [G, -C]] (du, dp) = (f, g)` in place: `rhs` holds `(f, g)`
     /// (length `n + m`) on entry and `(du, dp)` on return. Refines iteratively against
-    /// the unregularized matrix and records the final relative residual in the report.
+    /// the unregularized matrix and records the final relative residual (the smaller of
+    /// the unscaled and the scaled one) in the report.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let start = Instant::now();
         let dim = self.n + self.m;
@@ -563,15 +565,22 @@ impl KktSolver {
         Ok(x)
     }
 
-    /// `x = S y` with `(S A S) y = S b`, refined on the residual `b - A x`.
+    /// `x = S y` with `(S A S) y = S b`, refined on the residual `b - A x`, measured as the
+    /// smaller of two relative residuals: the system's, `|b - A x| / |b|`, and that of the
+    /// scaled system the factor solves, `|S (b - A x)| / |S b|`. Unscaled, the rows of large
+    /// entries (stiffnesses of `E h` in `K`) weigh their rounding against a right-hand side
+    /// carried by rows of small ones (a cavity's volume row) and refuse backward-stable
+    /// solutions; scaled, the slowly refined modes of regularized pivots can weigh more.
     fn solve_refined(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let dim = rhs.len();
-        let b_norm = norm(rhs);
-        let b_norm = if b_norm > 0.0 { b_norm } else { 1.0 };
         // Permuted, scaled right-hand side and residual.
         let mut r: Vec<f64> = self.fwd.iter().map(|&i| rhs[i]).collect();
         let s: Vec<f64> = self.fwd.iter().map(|&i| self.scale[i]).collect();
         let b = r.clone();
+        let scaled_norm =
+            |v: &[f64]| norm(&v.iter().zip(&s).map(|(vi, si)| vi * si).collect::<Vec<_>>());
+        let positive = |x: f64| if x > 0.0 { x } else { 1.0 };
+        let (b_norm, b_scaled_norm) = (positive(norm(&b)), positive(scaled_norm(&b)));
         let mut y = vec![0.0; dim];
         let mut ay = vec![0.0; dim];
         let mut residual = 1.0;
@@ -586,7 +595,7 @@ impl KktSolver {
             for i in 0..dim {
                 r[i] = b[i] - ay[i] / s[i];
             }
-            let new_residual = norm(&r) / b_norm;
+            let new_residual = (norm(&r) / b_norm).min(scaled_norm(&r) / b_scaled_norm);
             if !new_residual.is_finite() {
                 break;
             }

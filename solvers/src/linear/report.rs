@@ -57,7 +57,8 @@ pub struct SolveReport {
     pub inertia: Option<Inertia>,
     /// Iterative refinement steps of the latest solve.
     pub refinement_steps: usize,
-    /// Final relative residual `|b - A x| / |b|` of the latest solve (against the
-    /// unregularized matrix, `NaN` if not computed).
+    /// Final relative residual of the latest solve (against the unregularized matrix,
+    /// `NaN` if not computed): `|b - A x| / |b|` for `LL^T`; for the KKT solver the smaller
+    /// of that and `|S (b - A x)| / |S b|`, `S` its diagonal scaling.
     pub residual: f64,
 }
