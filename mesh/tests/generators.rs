@@ -169,7 +169,10 @@ fn hemisphere_is_the_lower_half_ball_graded_towards_its_pole() {
             let x = mesh.positions();
             for &v in mesh.boundary().unwrap().vertices() {
                 let (d, z) = (x[v].norm(), x[v].z);
-                assert!(z <= 0.0, "res {res}, grading {grading}: vertex {v} above the equator");
+                assert!(
+                    z <= 0.0,
+                    "res {res}, grading {grading}: vertex {v} above the equator"
+                );
                 assert!(
                     (d - r).abs() < 4.0 * f64::EPSILON * r || z == 0.0,
                     "res {res}, grading {grading}: boundary vertex {v} at radius {d}, z {z}"
@@ -178,7 +181,8 @@ fn hemisphere_is_the_lower_half_ball_graded_towards_its_pole() {
             // The pole's neighbour on the axis sits at r res^-grading above it.
             let above = r * (1.0 - (res as f64).powf(-grading));
             assert!(
-                x.iter().any(|p| p.xy().norm() == 0.0 && (p.z + above).abs() < 1e-15),
+                x.iter()
+                    .any(|p| p.xy().norm() == 0.0 && (p.z + above).abs() < 1e-15),
                 "res {res}, grading {grading}: no node at z = -{above}"
             );
             eprintln!(
