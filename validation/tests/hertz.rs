@@ -14,11 +14,12 @@
 //! than `1e-3` of the smallest `delta` (0.01 R), the force by less than 0.15%. The force is
 //! the plate's reaction (the contact forces' sum, or the meshed obstacle's force).
 //!
-//! The study (`#[ignore]`, release build:
+//! The studies (`#[ignore]`, minutes:
 //! `cargo test --release --workspace --locked --test validation -- --ignored hertz::`)
-//! prints the table of docs/validation.md (force against indentation, ours against Hertz,
-//! `tet4`/`tet10`, `standard`/`mixed-p1`, over refinement) and asserts the few-percent claim
-//! on its finest mesh.
+//! print the table of docs/validation.md (force against indentation, ours against Hertz,
+//! `tet4`/`tet10`, `standard`/`mixed-p1`, over refinement). The few-percent agreement is not
+//! reached on the meshes they run: `mixed-p1` comes down from 37% to 15% over Hertz on tet4
+//! (res 4 to 8) and to 7-8% on tet10 at res 4.
 
 use isochor_mesh::element::TetElement;
 use isochor_mesh::generate::{ball_surface, hemisphere};
@@ -210,11 +211,11 @@ fn the_mixed_sphere_follows_hertz_and_the_standard_one_locks() {
     }
 }
 
-/// Runs `standard` and `mixed-p1` on `element` at each of `levels` and prints the table of
+/// Runs each of `methods` on `element` at each of `levels` and prints the table of
 /// docs/validation.md; returns the relative errors against Hertz per method and level.
-fn study(element: TetElement, levels: &[usize]) -> Vec<(Method, Vec<Vec<f64>>)> {
+fn study(element: TetElement, methods: &[Method], levels: &[usize]) -> Vec<Vec<Vec<f64>>> {
     let mut table = Vec::new();
-    for method in [Method::MixedP1, Method::Standard] {
+    for &method in methods {
         let mut rows: Vec<Vec<f64>> = Vec::new();
         for &res in levels {
             let case = Case {
@@ -261,7 +262,7 @@ fn study(element: TetElement, levels: &[usize]) -> Vec<(Method, Vec<Vec<f64>>)> 
                 orders.join(" ")
             );
         }
-        table.push((method, rows));
+        table.push(rows);
     }
     table
 }
@@ -269,16 +270,23 @@ fn study(element: TetElement, levels: &[usize]) -> Vec<(Method, Vec<Vec<f64>>)> 
 #[test]
 #[ignore = "minutes: cargo test --release --workspace --locked --test validation -- --ignored hertz::"]
 fn hertz_study_tet10() {
-    let table = study(TetElement::Tet10, &[3, 4, 6]);
-    let finest = table[0].1.last().unwrap();
-    eprintln!("hertz tet10 mixed-p1 res 6: {}", percent(finest));
+    let table = study(TetElement::Tet10, &[Method::MixedP1], &[3, 4]);
+    // At res 4 (1,536 tets) within 10% from delta / R = 0.02 on: closer than mixed-p1 on
+    // 4-node tets at res 8 (12,288 tets, 11-15%). At 0.01 the contact radius spans about one
+    // ring of nodes, and the error swings with which ring is inside.
+    let finest = table[0].last().unwrap();
+    assert!(finest[1..].iter().all(|e| e.abs() < 0.1), "{finest:?}");
 }
 
 #[test]
 #[ignore = "minutes: cargo test --release --workspace --locked --test validation -- --ignored hertz::"]
 fn hertz_study_tet4() {
-    let table = study(TetElement::Tet4, &[4, 6, 8]);
-    let (mixed, standard) = (&table[0].1, &table[1].1);
+    let table = study(
+        TetElement::Tet4,
+        &[Method::MixedP1, Method::Standard],
+        &[4, 6, 8],
+    );
+    let (mixed, standard) = (&table[0], &table[1]);
     // Refinement brings mixed-p1 towards Hertz at the deepest indentation; standard locks.
     for w in mixed.windows(2) {
         assert!(w[1][4] < w[0][4], "{mixed:?}");
