@@ -1,8 +1,8 @@
 //! Every generator: positive tets, closed outward surface, boundary vertices on the analytic
 //! surface, and volumes converging to the analytic volume.
 
-use isochor_mesh::generate::{ball, box_grid, cylinder, puck, tube};
-use isochor_mesh::{MeshError, TetMesh, Vec3};
+use isochor_mesh::generate::{ball, ball_surface, box_grid, cylinder, hemisphere, puck, tube};
+use isochor_mesh::{ElementMesh, MeshError, TetMesh, Vec3};
 use std::f64::consts::PI;
 
 /// Checks orientation, surface closure and the divergence theorem; returns the mesh volume.
@@ -146,6 +146,56 @@ fn ball_converges_and_lies_on_its_sphere() {
     assert!(errors[3] < 2e-2);
 }
 
+/// The smallest normalized volume of a mesh's tets ([`TetMesh::quality`]).
+fn worst_quality(mesh: &TetMesh) -> f64 {
+    (0..mesh.num_tets())
+        .map(|e| mesh.quality(e))
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn hemisphere_is_the_lower_half_ball_graded_towards_its_pole() {
+    let r = 0.3;
+    for res in 1..=4 {
+        // Ungraded: exactly the lower half of the ball (the ball is mirror symmetric in z).
+        let half = hemisphere(r, res, 1.0).unwrap();
+        let volume = check_mesh(&half);
+        assert_eq!(half.num_tets(), 24 * res * res * res);
+        let whole = ball(r, res).unwrap().rest_volume();
+        assert!((2.0 * volume - whole).abs() < 1e-12 * whole, "res {res}");
+        for grading in [1.0, 2.0, 3.0] {
+            let mesh = hemisphere(r, res, grading).unwrap();
+            check_mesh(&mesh);
+            let x = mesh.positions();
+            for &v in mesh.boundary().unwrap().vertices() {
+                let (d, z) = (x[v].norm(), x[v].z);
+                assert!(
+                    z <= 0.0,
+                    "res {res}, grading {grading}: vertex {v} above the equator"
+                );
+                assert!(
+                    (d - r).abs() < 4.0 * f64::EPSILON * r || z == 0.0,
+                    "res {res}, grading {grading}: boundary vertex {v} at radius {d}, z {z}"
+                );
+            }
+            // The pole's neighbour on the axis sits at r res^-grading above it.
+            let above = r * (1.0 - (res as f64).powf(-grading));
+            assert!(
+                x.iter()
+                    .any(|p| p.xy().norm() == 0.0 && (p.z + above).abs() < 1e-15),
+                "res {res}, grading {grading}: no node at z = -{above}"
+            );
+            eprintln!(
+                "hemisphere res {res}, grading {grading}: worst tet quality {:.3}",
+                worst_quality(&mesh)
+            );
+            // The 10-node promotion onto the sphere folds no element (its constructor checks
+            // det(dX/dxi) > 0 at every quadrature rule's points).
+            ElementMesh::quadratic_on_surface(mesh, ball_surface(r)).unwrap();
+        }
+    }
+}
+
 #[test]
 fn bad_parameters_are_named() {
     let name = |e: MeshError| match e {
@@ -159,4 +209,5 @@ fn bad_parameters_are_named() {
     assert_eq!(name(tube(1.0, 0.5, 1.0, 2).unwrap_err()), "outer_radius");
     assert_eq!(name(tube(0.0, 0.5, 1.0, 2).unwrap_err()), "inner_radius");
     assert_eq!(name(ball(1.0, 100_000).unwrap_err()), "res");
+    assert_eq!(name(hemisphere(1.0, 2, 0.0).unwrap_err()), "grading");
 }

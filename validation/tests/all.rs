@@ -14,6 +14,7 @@ mod enclosed_volume;
 mod energies;
 mod extremes;
 mod friction;
+mod hertz;
 mod incline;
 mod locking;
 mod mesh_obstacle_friction;

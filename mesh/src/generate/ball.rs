@@ -49,6 +49,44 @@ pub fn ball_surface(radius: f64) -> impl Fn(&Vec3, &Vec3) -> Option<Vec3> + Copy
     move |a, b| Wall::Sphere(radius).midpoint(a, b)
 }
 
+/// The lower half (`z <= 0`) of a [`ball`] of `radius`, graded towards its south pole
+/// `(0, 0, -radius)` for contact studies: the half cube's lattice `[-1, 1]^2 x [-1, 0]`
+/// (`2 res` cells wide, `res` deep) is re-spaced about the pole `P = (0, 0, -1)` of the cube
+/// by `c -> P + (c - P) s^(grading - 1)`, with `s = |c - P|_inf`, before the cube-to-ball
+/// map. The map keeps every ray from `P` and the half cube's faces (`s = 1` there, and the
+/// face through `P` maps onto itself), so cells near the pole shrink to about
+/// `radius / res^grading` in every direction while the surface stays on the sphere and the
+/// equator on `z = 0`; `grading = 1` is the lower half of [`ball`]. `24 res^3` tets.
+pub fn hemisphere(radius: f64, res: usize, grading: f64) -> Result<TetMesh, MeshError> {
+    let radius = positive("radius", radius)?;
+    let res = resolution(res, MAX_RES)?;
+    let grading = positive("grading", grading)?;
+    let lattice = Lattice {
+        cells: [2 * res, 2 * res, res],
+        periodic: [false; 3],
+        mirror: [Some(res); 3],
+    };
+    let r = res as f64;
+    let graded = |c: [f64; 3]| {
+        let q = [c[0], c[1], c[2] + 1.0];
+        let s = q.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale = if s > 0.0 { s.powf(grading - 1.0) } else { 0.0 };
+        [q[0] * scale, q[1] * scale, q[2] * scale - 1.0]
+    };
+    let positions = lattice
+        .points()
+        .into_iter()
+        .map(|p| radius * cube_to_ball(graded(p.map(|i| (i as f64 - r) / r))))
+        .collect();
+    TetMesh::new(positions, lattice.tets())
+}
+
+/// The vertex and tet counts of [`hemisphere`] at `res`, without generating it.
+pub fn hemisphere_counts(res: usize) -> (f64, f64) {
+    let r = res as f64;
+    ((2.0 * r + 1.0).powi(2) * (r + 1.0), 24.0 * r.powi(3))
+}
+
 /// The vertex and tet counts of [`ball`] at `res`, without generating it.
 pub fn ball_counts(res: usize) -> (f64, f64) {
     let r = res as f64;

@@ -15,6 +15,7 @@
 //! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) | 0.20 at res 4 |
 //! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) | 0.26 at res 2 |
 //! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) | 0.19 at res 4 |
+//! | [`hemisphere`] `res`, `grading` | `24 res^3` (the lower half of the ball, graded towards its pole) | 0.19 at res 4, grading 1 |
 //! | [`spine_arm`] `res` | `1260 res^3` (a bar with five through-holes) | 0.27 |
 //! | [`cushion`] `res` | `768 res^3` (res 2: 6,144; a pad with a flat chamber) | 0.18 |
 //! | [`bubble`] `res` | `552 res^3` (res 2: 4,416; a chamber under a membrane) | 0.18 |
@@ -47,7 +48,7 @@ mod spine;
 mod torso;
 mod tube;
 
-pub use ball::{ball, ball_counts, ball_surface};
+pub use ball::{ball, ball_counts, ball_surface, hemisphere, hemisphere_counts};
 pub use bubble::{bubble, bubble_counts, BUBBLE_SIZE};
 pub use creature::{creature, creature_counts, CREATURE_SIZE};
 pub use cushion::{cushion, cushion_counts, CUSHION_SIZE};
@@ -233,6 +234,7 @@ pub(crate) mod tests {
                 &tube(0.8, 1.0, 0.5, res).unwrap().mesh,
             );
             exact(ball_counts(res), &ball(1.0, res).unwrap());
+            exact(hemisphere_counts(res), &hemisphere(1.0, res, 2.0).unwrap());
             exact(creature_counts(res), &creature(res).unwrap().0);
             bound(spine_arm_counts(res), &spine_arm(res).unwrap().0);
             bound(cushion_counts(res), &cushion(res).unwrap().0);
