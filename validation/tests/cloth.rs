@@ -10,7 +10,7 @@ use isochor_energies::cloth::bending::{dihedral_angle, RestHinge};
 use isochor_energies::cloth::membrane::{energy_gradient_hessian, second_piola_kirchhoff};
 use isochor_energies::cloth::Fabric;
 use isochor_energies::triangle::{reduced_deformation_gradient, RestTriangle};
-use isochor_mesh::Vec3;
+use isochor_mesh::{hinges, Vec3};
 use isochor_solvers::terms::{Cloth, EnergyTerm};
 use isochor_solvers::LoadLevel;
 use isochor_validation::fd;
@@ -227,55 +227,42 @@ fn bent_strip_matches_the_plate_energy() {
 
 /// Sum of hinge energies of the strip: `n` cells along x (bent), 2 across y.
 fn bent_strip_energy(fabric: &Fabric, n: usize, length: f64, width: f64, radius: f64) -> f64 {
-    let m = 2;
-    let flat = |i: usize, j: usize| {
-        Vector3::new(
-            length * i as f64 / n as f64,
-            width * j as f64 / m as f64,
-            0.0,
-        )
-    };
-    let bent = |p: Vector3<f64>| {
+    let (rest, triangles) = grid(n, 2, length, width);
+    let bent = |p: &Vec3| {
         let phi = p.x / radius;
-        Vector3::new(radius * phi.sin(), p.y, radius * (1.0 - phi.cos()))
+        Vec3::new(radius * phi.sin(), p.y, radius * (1.0 - phi.cos()))
     };
-    let node = |i: usize, j: usize| (i, j);
-    let mut triangles = Vec::new();
-    for i in 0..n {
-        for j in 0..m {
-            triangles.push([node(i, j), node(i + 1, j), node(i + 1, j + 1)]);
-            triangles.push([node(i, j), node(i + 1, j + 1), node(i, j + 1)]);
-        }
-    }
-    // Interior edges, each with its two opposite vertices, consistently oriented.
-    let mut edges: std::collections::HashMap<((usize, usize), (usize, usize)), (usize, usize)> =
-        Default::default();
-    let mut energy = 0.0;
-    for t in &triangles {
-        for k in 0..3 {
-            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-            if let Some(&opposite) = edges.get(&(b, a)) {
-                let ids = [a, b, c, opposite];
-                let rest = RestHinge::new(fabric, &ids.map(|(i, j)| flat(i, j))).unwrap();
-                let x = ids.map(|(i, j)| bent(flat(i, j)));
-                energy += rest.energy_gradient_hessian(&x).unwrap().energy;
-            } else {
-                edges.insert((a, b), c);
-            }
-        }
-    }
-    energy
+    hinges(&triangles)
+        .unwrap()
+        .iter()
+        .map(|h| {
+            let hinge = RestHinge::new(fabric, &h.map(|v| rest[v])).unwrap();
+            hinge
+                .energy_gradient_hessian(&h.map(|v| bent(&rest[v])))
+                .unwrap()
+                .energy
+        })
+        .sum()
 }
 
-/// A sheet of `n x n` squares (each split by one diagonal) of side `size`, in the plane z = 0.
-fn sheet(n: usize, size: f64) -> (Vec<Vec3>, Vec<[usize; 3]>) {
-    let node = |i: usize, j: usize| i * (n + 1) + j;
+/// A sheet of `n x m` rectangles (each split by one diagonal) spanning `length x width` in the
+/// plane z = 0.
+fn grid(n: usize, m: usize, length: f64, width: f64) -> (Vec<Vec3>, Vec<[usize; 3]>) {
+    let node = |i: usize, j: usize| i * (m + 1) + j;
     let nodes = (0..=n)
-        .flat_map(|i| (0..=n).map(move |j| Vec3::new(i as f64, j as f64, 0.0) * (size / n as f64)))
+        .flat_map(|i| {
+            (0..=m).map(move |j| {
+                Vec3::new(
+                    length * i as f64 / n as f64,
+                    width * j as f64 / m as f64,
+                    0.0,
+                )
+            })
+        })
         .collect();
     let triangles = (0..n)
         .flat_map(|i| {
-            (0..n).flat_map(move |j| {
+            (0..m).flat_map(move |j| {
                 [
                     [node(i, j), node(i + 1, j), node(i + 1, j + 1)],
                     [node(i, j), node(i + 1, j + 1), node(i, j + 1)],
@@ -322,7 +309,7 @@ proptest! {
         stretch in 1.0..1.3f64,
         bumps in proptest::collection::vec(-1.0..1.0f64, 9 * 3),
     ) {
-        let (rest, triangles) = sheet(2, 0.02);
+        let (rest, triangles) = grid(2, 2, 0.02, 0.02);
         let term = Cloth::new(&rest, triangles, fabric(), 0.9).unwrap();
         prop_assert_eq!(term.num_hinges(), 3 * 2 * 2 - 2 * 2);
         let h = 1e-6 * 0.01;
@@ -355,7 +342,7 @@ proptest! {
 /// triangle, an edge shared by three triangles.
 #[test]
 fn cloth_term_refuses_bad_sheets() {
-    let (rest, triangles) = sheet(1, 0.01);
+    let (rest, triangles) = grid(1, 1, 0.01, 0.01);
     let message = |r: Result<Cloth, isochor_solvers::SolverError>| r.unwrap_err().to_string();
     assert!(message(Cloth::new(&rest, triangles.clone(), fabric(), 0.0)).contains("rest_scale"));
     let mut degenerate = rest.clone();
