@@ -11,9 +11,10 @@ use isochor_energies::cloth::membrane::{energy_gradient_hessian, second_piola_ki
 use isochor_energies::cloth::Fabric;
 use isochor_energies::triangle::{reduced_deformation_gradient, RestTriangle};
 use isochor_mesh::{hinges, Vec3};
-use isochor_solvers::terms::{Cloth, EnergyTerm};
+use isochor_solvers::terms::Cloth;
 use isochor_solvers::LoadLevel;
 use isochor_validation::fd;
+use isochor_validation::terms::evaluate_dense;
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Rotation3, Unit, Vector3};
 use proptest::prelude::*;
 
@@ -275,19 +276,8 @@ fn grid(n: usize, m: usize, length: f64, width: f64) -> (Vec<Vec3>, Vec<[usize; 
 
 /// The cloth term's energy, gradient and dense Hessian at `x`.
 fn evaluate_term(term: &Cloth, x: &[Vec3]) -> (f64, DVector<f64>, DMatrix<f64>) {
-    let n = 3 * x.len();
-    let pattern = term.hessian_pattern();
-    let mut gradient = vec![0.0; n];
-    let mut values = vec![0.0; pattern.len()];
-    let level = LoadLevel::quasi_static(1.0);
-    let e = term
-        .evaluate(x, &level, Some(&mut gradient), Some(&mut values))
-        .unwrap();
-    let mut h = DMatrix::zeros(n, n);
-    for (&(r, c), v) in pattern.iter().zip(&values) {
-        h[(r, c)] += v;
-    }
-    (e, DVector::from_vec(gradient), h)
+    let (e, g, h) = evaluate_dense(term, x, &LoadLevel::FULL);
+    (e, DVector::from_vec(g), h)
 }
 
 fn positions(y: &DVector<f64>) -> Vec<Vec3> {

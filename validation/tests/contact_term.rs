@@ -8,8 +8,9 @@
 //! penalties' growth and the contact summary against their formulas.
 
 use isochor_mesh::Vec3;
-use isochor_solvers::terms::{Contact, EnergyTerm};
+use isochor_solvers::terms::Contact;
 use isochor_solvers::{LoadLevel, Obstacle, Shape};
+use isochor_validation::terms::evaluate_dense;
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 
@@ -75,18 +76,7 @@ fn ring_radii(o: &Obstacle, x: &Vec3, t: f64) -> Option<(f64, f64)> {
 
 /// `(energy, gradient, dense Hessian)` of `term` at `x`.
 fn evaluate(term: &Contact, x: &[Vec3]) -> (f64, Vec<f64>, DMatrix<f64>) {
-    let n = 3 * x.len();
-    let mut g = vec![0.0; n];
-    let pattern = term.hessian_pattern();
-    let mut values = vec![0.0; pattern.len()];
-    let e = term
-        .evaluate(x, &LoadLevel::FULL, Some(&mut g), Some(&mut values))
-        .unwrap();
-    let mut h = DMatrix::zeros(n, n);
-    for (&(r, c), v) in pattern.iter().zip(&values) {
-        h[(r, c)] += v;
-    }
-    (e, g, h)
+    evaluate_dense(term, x, &LoadLevel::FULL)
 }
 
 fn shifted(x: &[Vec3], dof: usize, by: f64) -> Vec<Vec3> {

@@ -16,6 +16,7 @@ use isochor_solvers::terms::{
     Contact, EnergyTerm, FrictionLag, SurfaceContact, SurfaceContactSpec, SurfaceFriction,
 };
 use isochor_solvers::{LoadLevel, MeshObstacle, Obstacle, Shape, SurfaceFrictionSpec};
+use isochor_validation::terms::evaluate_dense;
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
@@ -42,19 +43,7 @@ fn slip() -> impl Strategy<Value = f64> {
 
 /// The term's energy, gradient and dense Hessian at `x`.
 fn evaluate(term: &dyn EnergyTerm, x: &[Vec3]) -> (f64, Vec<f64>, DMatrix<f64>) {
-    let n = 3 * x.len();
-    let pattern = term.hessian_pattern();
-    let mut gradient = vec![0.0; n];
-    let mut values = vec![0.0; pattern.len()];
-    let level = LoadLevel::quasi_static(0.6);
-    let e = term
-        .evaluate(x, &level, Some(&mut gradient), Some(&mut values))
-        .unwrap();
-    let mut h = DMatrix::zeros(n, n);
-    for (&(r, c), v) in pattern.iter().zip(&values) {
-        h[(r, c)] += v;
-    }
-    (e, gradient, h)
+    evaluate_dense(term, x, &LoadLevel::quasi_static(0.6))
 }
 
 fn moved(x: &[Vec3], k: usize, by: f64) -> Vec<Vec3> {

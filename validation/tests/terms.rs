@@ -15,6 +15,7 @@ use isochor_solvers::terms::{
 };
 use isochor_solvers::{LoadLevel, SolverError};
 use isochor_validation::strategies::{deformed_box, quadratic};
+use isochor_validation::terms::evaluate_dense;
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 use std::sync::Arc;
@@ -36,23 +37,7 @@ const STEP: f64 = 1e-6;
 const DEFECT: f64 = 1e-5;
 
 fn evaluate(term: &dyn EnergyTerm, x: &[Vec3]) -> (f64, Vec<f64>, DMatrix<f64>) {
-    let n = 3 * x.len();
-    let mut g = vec![0.0; n];
-    let pattern = term.hessian_pattern();
-    let mut values = vec![0.0; pattern.len()];
-    let e = term
-        .evaluate(
-            x,
-            &LoadLevel::quasi_static(0.7),
-            Some(&mut g),
-            Some(&mut values),
-        )
-        .unwrap();
-    let mut h = DMatrix::zeros(n, n);
-    for (&(r, c), v) in pattern.iter().zip(&values) {
-        h[(r, c)] += v;
-    }
-    (e, g, h)
+    evaluate_dense(term, x, &LoadLevel::quasi_static(0.7))
 }
 
 fn energy(term: &dyn EnergyTerm, x: &[Vec3]) -> f64 {
