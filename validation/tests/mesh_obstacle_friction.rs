@@ -7,7 +7,7 @@
 //! `epsv` per step; the plate's own `[[contact.obstacles]]` coefficient applies. No accepted
 //! state has a block triangle intersect a plate triangle (checked by [`slide`]).
 
-use super::incline::{fitted_acceleration, slide, G};
+use super::incline::{assert_kinetic_acceleration, assert_sticks, slide, G};
 use isochor_scenes::resolve::{self, ResolvedScene};
 use isochor_scenes::Scene;
 
@@ -99,43 +99,16 @@ frames = {STEPS}
 
 #[test]
 fn the_block_slides_down_a_meshed_plate_with_the_kinetic_acceleration() {
-    for (theta, mu) in [(30.0f64, 0.3), (30.0, 0.5), (20.0, 0.2)] {
-        let (path, lags) = slide(block_on_meshed_plate(theta, mu, [0.0; 3]), None);
-        let t = theta.to_radians();
-        let expected = G * (t.sin() - mu * t.cos());
-        let measured = fitted_acceleration(&path);
-        eprintln!(
-            "meshed plate theta {theta} mu {mu}: acceleration {measured:.5} against {expected:.5} ({:+.3}%), lags per step {lags:?}",
-            100.0 * (measured / expected - 1.0)
-        );
-        assert!(
-            (measured - expected).abs() <= 0.02 * expected,
-            "theta {theta}, mu {mu}: {measured} against {expected}"
-        );
-    }
+    assert_kinetic_acceleration("meshed plate", |theta, mu| {
+        block_on_meshed_plate(theta, mu, [0.0; 3])
+    });
 }
 
 #[test]
 fn the_block_sticks_on_a_meshed_plate_below_the_friction_angle() {
-    for (theta, mu) in [(30.0f64, 0.7), (20.0, 0.5)] {
-        let resolved = block_on_meshed_plate(theta, mu, [0.0; 3]);
-        let epsv = resolved.friction.as_ref().unwrap().epsv;
-        let (path, lags) = slide(resolved, None);
-        let t = theta.to_radians();
-        let steps = (path.len() - 1) as f64;
-        // Block 10 mm high, E = 1 MPa, nu = 0.3, rho = 1000.
-        let shear = 1000.0 * G * t.sin() * 0.01f64.powi(2) / (2.0 * 1e6 / 2.6);
-        let bound = steps * epsv + shear;
-        let creep = path.last().unwrap().1 - path[0].1;
-        let predicted = steps * epsv * (1.0 - (1.0 - t.tan() / mu).sqrt());
-        eprintln!(
-            "meshed plate theta {theta} mu {mu}: displacement {creep:.3e} (creep predicted {predicted:.3e}, bound {bound:.3e}, epsv {epsv:.1e}), lags per step {lags:?}"
-        );
-        assert!(
-            creep.abs() <= bound,
-            "theta {theta}, mu {mu}: {creep} beyond {bound}"
-        );
-    }
+    assert_sticks("meshed plate", |theta, mu| {
+        block_on_meshed_plate(theta, mu, [0.0; 3])
+    });
 }
 
 /// `[[contact.obstacles]]` names the plate by its index among all `[[obstacles]]` (an

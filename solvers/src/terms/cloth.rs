@@ -7,11 +7,11 @@
 use super::{block_pattern, scatter, EnergyTerm};
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;
-use isochor_energies::cloth::bending::RestHinge;
+use isochor_energies::cloth::bending::{HingeTerms, RestHinge};
 use isochor_energies::cloth::membrane::energy_gradient_hessian;
 use isochor_energies::cloth::Fabric;
-use isochor_energies::project_to_psd;
 use isochor_energies::triangle::RestTriangle;
+use isochor_energies::{project_to_psd, TriangleTerms};
 use isochor_mesh::{hinges, Vec3};
 use rayon::prelude::*;
 
@@ -81,35 +81,21 @@ impl Cloth {
     }
 }
 
-/// One element's energy, its gradient and its projected Hessian (column-major).
-type Local = (f64, Vec<f64>, Vec<f64>);
-
 impl Cloth {
-    fn membrane(&self, x: &[Vec3], t: usize) -> Local {
+    fn membrane(&self, x: &[Vec3], t: usize) -> TriangleTerms {
         let nodes = &self.triangles[t];
-        let terms =
-            energy_gradient_hessian(&self.fabric, &nodes.map(|v| x[v]), &self.rest_triangles[t]);
-        (
-            terms.energy,
-            terms.gradient.as_slice().to_vec(),
-            project_to_psd(&terms.hessian).as_slice().to_vec(),
-        )
+        energy_gradient_hessian(&self.fabric, &nodes.map(|v| x[v]), &self.rest_triangles[t])
     }
 
-    fn bending(&self, x: &[Vec3], h: usize) -> Result<Local, SolverError> {
+    fn bending(&self, x: &[Vec3], h: usize) -> Result<HingeTerms, SolverError> {
         let nodes = &self.hinges[h];
-        let terms = self.rest_hinges[h]
+        self.rest_hinges[h]
             .energy_gradient_hessian(&nodes.map(|v| x[v]))
             .ok_or_else(|| {
                 SolverError::InvalidProblem(format!(
                     "a triangle of cloth hinge {nodes:?} has collapsed"
                 ))
-            })?;
-        Ok((
-            terms.energy,
-            terms.gradient.as_slice().to_vec(),
-            project_to_psd(&terms.hessian).as_slice().to_vec(),
-        ))
+            })
     }
 }
 
@@ -132,34 +118,36 @@ impl EnergyTerm for Cloth {
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         // Elements evaluated in parallel, then summed in element order (resumed runs must
-        // equal uninterrupted ones bit for bit).
-        let membranes: Vec<Local> = (0..self.triangles.len())
+        // equal uninterrupted ones bit for bit); the Hessians projected only when asked for.
+        let membranes: Vec<TriangleTerms> = (0..self.triangles.len())
             .into_par_iter()
             .map(|t| self.membrane(x, t))
             .collect();
-        let hinges: Vec<Local> = (0..self.hinges.len())
+        let hinges: Vec<HingeTerms> = (0..self.hinges.len())
             .into_par_iter()
             .map(|h| self.bending(x, h))
             .collect::<Result<_, _>>()?;
-        let nodes = self
-            .triangles
-            .iter()
-            .map(|t| t.as_slice())
-            .chain(self.hinges.iter().map(|h| h.as_slice()));
-        let locals = membranes.iter().chain(&hinges);
-        let mut energy = 0.0;
-        let (mut gradient, mut hessian) = (gradient, hessian);
-        let mut offset = 0;
-        for (nodes, (e, g, h)) in nodes.zip(locals) {
-            energy += e;
-            if let Some(out) = gradient.as_deref_mut() {
-                scatter(nodes, g, out);
-            }
-            if let Some(out) = hessian.as_deref_mut() {
-                out[offset..offset + h.len()].copy_from_slice(h);
-            }
-            offset += h.len();
+        if let Some(out) = hessian {
+            let (triangle_blocks, hinge_blocks) = out.split_at_mut(81 * membranes.len());
+            triangle_blocks
+                .par_chunks_mut(81)
+                .zip(membranes.par_iter())
+                .for_each(|(o, m)| o.copy_from_slice(project_to_psd(&m.hessian).as_slice()));
+            hinge_blocks
+                .par_chunks_mut(144)
+                .zip(hinges.par_iter())
+                .for_each(|(o, h)| o.copy_from_slice(project_to_psd(&h.hessian).as_slice()));
         }
+        if let Some(out) = gradient {
+            for (nodes, m) in self.triangles.iter().zip(&membranes) {
+                scatter(nodes, m.gradient.as_slice(), out);
+            }
+            for (nodes, h) in self.hinges.iter().zip(&hinges) {
+                scatter(nodes, h.gradient.as_slice(), out);
+            }
+        }
+        let energy = membranes.iter().map(|m| m.energy).sum::<f64>()
+            + hinges.iter().map(|h| h.energy).sum::<f64>();
         Ok(energy)
     }
 }
