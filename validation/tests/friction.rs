@@ -301,17 +301,8 @@ fn cube_over_a_sliding_plate(slide: Vec3) -> (Vec<Vec3>, SurfaceContact, MeshObs
     .unwrap();
     let rest = cube.positions().to_vec();
     let plate = MeshObstacle {
-        name: "plate".into(),
-        vertices: vec![
-            Vec3::new(-1.0, -1.0, 0.0),
-            Vec3::new(2.0, -1.0, 0.0),
-            Vec3::new(2.0, 2.0, 0.0),
-            Vec3::new(-1.0, 2.0, 0.0),
-        ],
-        triangles: vec![[0, 1, 2], [0, 2, 3]],
         translate: slide,
-        rotate: None,
-        curve: None,
+        ..super::mesh_obstacle_term::square_plate()
     };
     let spec = SurfaceContactSpec {
         dhat: 0.01,

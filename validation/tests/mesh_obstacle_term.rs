@@ -21,6 +21,19 @@ const DHAT: f64 = 0.01;
 /// end of the run.
 fn plate() -> MeshObstacle {
     MeshObstacle {
+        translate: Vec3::new(0.0, 0.0, 5e-4),
+        rotate: Some(AxisRotation {
+            center: Vec3::new(0.5, 0.5, 0.0),
+            axis: Vec3::x(),
+            angle: 1e-4,
+        }),
+        ..square_plate()
+    }
+}
+
+/// The fixed plate `[-1, 2]^2` at `z = 0`, two triangles.
+pub fn square_plate() -> MeshObstacle {
+    MeshObstacle {
         name: "plate".into(),
         vertices: vec![
             Vec3::new(-1.0, -1.0, 0.0),
@@ -29,12 +42,8 @@ fn plate() -> MeshObstacle {
             Vec3::new(-1.0, 2.0, 0.0),
         ],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
-        translate: Vec3::new(0.0, 0.0, 5e-4),
-        rotate: Some(AxisRotation {
-            center: Vec3::new(0.5, 0.5, 0.0),
-            axis: Vec3::x(),
-            angle: 1e-4,
-        }),
+        translate: Vec3::zeros(),
+        rotate: None,
         curve: None,
     }
 }
