@@ -76,6 +76,29 @@ impl PhysicalGroups {
     }
 }
 
+/// The vertex index [`ElementMesh::from_nodes`](crate::ElementMesh::from_nodes) gives each of
+/// `num_nodes` input nodes that is a corner of an element of `connectivity` (`nodes_per_element`
+/// indices each): the corners are numbered first, in input order. A group's triangles, listed
+/// by input nodes, are renumbered by it.
+pub fn corner_numbering(
+    connectivity: &[usize],
+    nodes_per_element: usize,
+    num_nodes: usize,
+) -> Vec<Option<usize>> {
+    let mut vertex = vec![None; num_nodes];
+    for element in connectivity.chunks_exact(nodes_per_element) {
+        for &i in &element[..4] {
+            if let Some(v) = vertex.get_mut(i) {
+                *v = Some(0);
+            }
+        }
+    }
+    for (count, v) in vertex.iter_mut().flatten().enumerate() {
+        *v = count;
+    }
+    vertex
+}
+
 impl PhysicalGroup {
     /// A named surface group of `faces` (corner triangles) with number `tag`.
     pub fn surface(name: &str, tag: i64, faces: Vec<[usize; 3]>) -> Self {

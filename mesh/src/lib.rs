@@ -30,7 +30,7 @@ pub use adjacency::Adjacency;
 pub use closest::{closest_point_on_triangle, TriangleBvh};
 pub use element::{ElementMesh, ElementSurface};
 pub use error::MeshError;
-pub use groups::{PhysicalGroup, PhysicalGroups};
+pub use groups::{corner_numbering, PhysicalGroup, PhysicalGroups};
 pub use locate::TetLocator;
 pub use selection::{FaceSelection, Region, VertexSelection};
 pub use surface::{check_closed_manifold, hinges, BoundarySurface, TET_FACES};

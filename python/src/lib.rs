@@ -31,5 +31,6 @@ fn _isochor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::reduced, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::read_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(mesh::mesh_from_arrays, m)?)?;
     Ok(())
 }

@@ -3,9 +3,10 @@
 
 use crate::convert::{indices, points, rows};
 use crate::errors::mesh_error;
+use isochor_mesh::element::TetElement;
 use isochor_mesh::io::{read_gmsh_with_groups, read_mesh_elements, read_tetgen_with_regions};
-use isochor_mesh::{ElementMesh, PhysicalGroups, Vec3};
-use numpy::{PyArray1, PyArray2};
+use isochor_mesh::{corner_numbering, ElementMesh, PhysicalGroup, PhysicalGroups, Vec3};
+use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -141,4 +142,70 @@ pub fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
         .map_err(mesh_error)?;
     let regions = vec![0; mesh.num_elements()];
     Ok(Mesh::new(&mesh, regions, &groups))
+}
+
+/// A group of [`mesh_from_arrays`]: dimension, tag, name, triangles by input node (`(k, 3)`),
+/// tets by element index.
+type ArrayGroup<'py> = (
+    usize,
+    i64,
+    Option<String>,
+    PyReadonlyArray2<'py, i64>,
+    PyReadonlyArray1<'py, i64>,
+);
+
+/// A mesh from arrays, as a file reader builds it: `nodes` `(n, 3)`, `elements` `(m, 4 or 10)`
+/// (Gmsh's node order) and `groups`, their triangles listed by input node (renumbered as
+/// the mesh numbers its corners). The package's `from_meshio` calls it.
+#[pyfunction]
+pub fn mesh_from_arrays(
+    nodes: PyReadonlyArray2<'_, f64>,
+    elements: PyReadonlyArray2<'_, i64>,
+    groups: Vec<ArrayGroup<'_>>,
+) -> PyResult<Mesh> {
+    let bad = |m: String| crate::errors::MeshError::new_err(m);
+    let index = |i: &i64| usize::try_from(*i).map_err(|_| bad(format!("negative index {i}")));
+    let x = nodes.as_array();
+    let positions: Vec<Vec3> = x
+        .rows()
+        .into_iter()
+        .map(|r| Vec3::new(r[0], r[1], r[2]))
+        .collect();
+    let e = elements.as_array();
+    let kind = match e.ncols() {
+        4 => TetElement::Tet4,
+        10 => TetElement::Tet10,
+        n => return Err(bad(format!("elements: {n} nodes per element (4 or 10)"))),
+    };
+    let connectivity = e.iter().map(index).collect::<PyResult<Vec<_>>>()?;
+    let vertex = corner_numbering(&connectivity, kind.num_nodes(), positions.len());
+    let mut physical = Vec::new();
+    for (dimension, tag, name, faces, tets) in groups {
+        let faces = faces
+            .as_array()
+            .rows()
+            .into_iter()
+            .map(|f| {
+                let corner = |i: &i64| {
+                    vertex.get(index(i)?).copied().flatten().ok_or_else(|| {
+                        bad(format!(
+                            "group {tag}: triangle node {i} is no element's corner"
+                        ))
+                    })
+                };
+                Ok([corner(&f[0])?, corner(&f[1])?, corner(&f[2])?])
+            })
+            .collect::<PyResult<_>>()?;
+        let tets = tets.as_array().iter().map(index).collect::<PyResult<_>>()?;
+        physical.push(PhysicalGroup {
+            dimension,
+            tag,
+            name,
+            faces,
+            tets,
+        });
+    }
+    let mesh = ElementMesh::from_nodes(kind, positions, connectivity).map_err(mesh_error)?;
+    let regions = vec![0; mesh.num_elements()];
+    Ok(Mesh::new(&mesh, regions, &PhysicalGroups::new(physical)))
 }

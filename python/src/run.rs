@@ -12,6 +12,7 @@ use isochor_scenes::{resolve, run_scene, RunOptions};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
@@ -19,8 +20,7 @@ use std::sync::{Arc, Mutex};
 #[derive(Default)]
 struct Collected {
     frames: Vec<FrameData>,
-    /// The first exception of the progress callback (or a pending Ctrl-C); the steps after it
-    /// call nothing.
+    /// The exception of the progress callback (or a pending Ctrl-C) that stopped the run.
     error: Option<PyErr>,
 }
 
@@ -149,7 +149,8 @@ fn kept(index: usize, every: usize, total: usize) -> bool {
 }
 
 /// The step hook: copies the kept frames, then calls `progress(step, t, newton_iterations)`
-/// with the GIL held, and checks for Ctrl-C.
+/// with the GIL held and checks for Ctrl-C; an exception of either stops the run there (its
+/// frame kept).
 fn hook(
     collected: Arc<Mutex<Collected>>,
     progress: Option<Py<PyAny>>,
@@ -159,13 +160,9 @@ fn hook(
 ) -> StepHook {
     StepHook(Arc::new(move |frame| {
         let mut c = collected.lock().unwrap_or_else(|e| e.into_inner());
-        if keep_frames {
-            if let Some(k) = frame.frame.filter(|&k| kept(k, every, total)) {
-                c.frames.push(FrameData::of(k, frame));
-            }
-        }
-        if c.error.is_some() {
-            return;
+        let k = frame.frame;
+        if keep_frames && k.is_some_and(|k| kept(k, every, total)) {
+            c.frames.extend(k.map(|k| FrameData::of(k, frame)));
         }
         let outcome = Python::attach(|py| {
             py.check_signals()?;
@@ -177,9 +174,15 @@ fn hook(
             }
             Ok::<(), PyErr>(())
         });
-        if let Err(e) = outcome {
-            c.error = Some(e);
+        let Err(e) = outcome else {
+            return ControlFlow::Continue(());
+        };
+        // The last good state is the run's last frame.
+        if keep_frames && c.frames.last().map(|f| f.index) != k {
+            c.frames.extend(k.map(|k| FrameData::of(k, frame)));
         }
+        c.error = Some(e);
+        ControlFlow::Break(())
     }))
 }
 
@@ -223,26 +226,21 @@ pub fn run(
     ));
     let outcome = py.detach(|| run_scene(&loaded, &options));
     let collected = std::mem::take(&mut *collected.lock().unwrap_or_else(|e| e.into_inner()));
-    if let Some(e) = collected.error {
-        return Err(e);
-    }
-    let (result, out) = outcome.map_err(scene_error)?;
-    let json = serde_json::to_string(&result.to_json())
-        .map_err(|e| SolverError::new_err(e.to_string()))?;
-    let py_mesh = Py::new(py, Mesh::new(&mesh, regions, &PhysicalGroups::default()))?;
-    let frames = collected
-        .frames
-        .into_iter()
-        .map(|f| Py::new(py, Frame::new(f, mesh.clone())))
-        .collect::<PyResult<_>>()?;
-    let error = result.error.clone();
-    let run = RunResult {
-        result,
-        json,
-        frames,
-        mesh: py_mesh,
-        out,
+    let (result, out) = match (outcome, collected.error) {
+        (Ok(run), None) => run,
+        (Err(e), None) => return Err(scene_error(e)),
+        (Err(_), Some(stop)) => return Err(stop),
+        (Ok((mut result, out)), Some(stop)) => {
+            // The exception that stopped the run, raised with the run up to there.
+            let error = result.error.take().unwrap_or_default();
+            result.error = Some(format!("{error}: {}", exception_text(py, &stop)));
+            let run = result_of(py, result, out, &mesh, regions, collected.frames)?;
+            stop.value(py).setattr("result", Py::new(py, run)?)?;
+            return Err(stop);
+        }
     };
+    let error = result.error.clone();
+    let run = result_of(py, result, out, &mesh, regions, collected.frames)?;
     match error {
         Some(message) if check => {
             let run = Py::new(py, run)?;
@@ -250,4 +248,42 @@ pub fn run(
         }
         _ => Ok(run),
     }
+}
+
+/// `Type: message` of an exception, `Type` alone when its message is empty (Ctrl-C's
+/// `KeyboardInterrupt`).
+fn exception_text(py: Python<'_>, e: &PyErr) -> String {
+    let name = e
+        .get_type(py)
+        .name()
+        .map(|n| n.to_string())
+        .unwrap_or_default();
+    match e.value(py).str().map(|s| s.to_string()) {
+        Ok(message) if !message.is_empty() => format!("{name}: {message}"),
+        _ => name,
+    }
+}
+
+/// The Python result of the run `result` on `mesh`, with its kept `frames`.
+fn result_of(
+    py: Python<'_>,
+    result: isochor_scenes::RunResult,
+    out: Option<PathBuf>,
+    mesh: &Arc<ElementMesh>,
+    regions: Vec<i32>,
+    frames: Vec<FrameData>,
+) -> PyResult<RunResult> {
+    let json = serde_json::to_string(&result.to_json())
+        .map_err(|e| SolverError::new_err(e.to_string()))?;
+    let frames = frames
+        .into_iter()
+        .map(|f| Py::new(py, Frame::new(f, mesh.clone())))
+        .collect::<PyResult<_>>()?;
+    Ok(RunResult {
+        result,
+        json,
+        frames,
+        mesh: Py::new(py, Mesh::new(mesh, regions, &PhysicalGroups::default()))?,
+        out,
+    })
 }

@@ -40,3 +40,22 @@ def test_pandas_steps(tet10):
     table = tet10.steps_frame()
     assert list(table["step"]) == [1, 2]
     assert "contact_force_y" in table.columns
+
+
+@pytest.mark.parametrize("name", ["bilayer-v41.msh", "tube-tet10-v41.msh"])
+def test_from_meshio_equals_read_mesh(name):
+    meshio = pytest.importorskip("meshio")
+    from conftest import REPO
+
+    path = REPO / "mesh" / "tests" / "data" / name
+    read = isochor.read_mesh(path)
+    converted = isochor.from_meshio(meshio.read(path))
+    assert converted.kind == read.kind
+    np.testing.assert_array_equal(converted.nodes, read.nodes)
+    np.testing.assert_array_equal(converted.elements, read.elements)
+    assert converted.groups.keys() == read.groups.keys()
+    for key, group in read.groups.items():
+        other = converted.groups[key]
+        assert (other["dimension"], other["tag"]) == (group["dimension"], group["tag"]), key
+        np.testing.assert_array_equal(other["faces"], group["faces"])
+        np.testing.assert_array_equal(other["tets"], group["tets"])

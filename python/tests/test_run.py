@@ -1,6 +1,8 @@
 """Runs from Python: arrays and their shapes and dtypes, progress, the GIL, outputs."""
 
 import gc
+import os
+import signal
 import threading
 import time
 
@@ -73,12 +75,49 @@ def test_progress_gets_every_accepted_step():
     assert [i for _, _, i in seen] == list(r.steps["newton_iterations"])
 
 
-def test_progress_exception_is_raised():
+def test_progress_exception_stops_the_run_after_its_step():
+    seen = []
+
     def fail(step, t, iterations):
+        seen.append(step)
         raise RuntimeError(f"stop at {step}")
 
-    with pytest.raises(RuntimeError, match="stop at 1"):
-        isochor.run(isochor.Scene.builtin("cantilever").reduced(), progress=fail)
+    scene = isochor.Scene.builtin("cantilever").set("res", 1).set("steps", 3).set("every", 2)
+    with pytest.raises(RuntimeError, match="stop at 1") as info:
+        isochor.run(scene, progress=fail)
+    assert seen == [1], "no step after the one whose callback raised"
+    r = info.value.result
+    assert isinstance(r, isochor.Result)
+    assert r.converged is False
+    assert r.error == "interrupted after step 1: RuntimeError: stop at 1"
+    assert r.to_dict()["error"] == r.error and r.to_dict()["failed_step"] is None
+    assert r.steps["step"].tolist() == [1]
+    # Frame 1 is not one `every = 2` keeps, but it is the last good state.
+    assert [f.index for f in r.frames] == [0, 1]
+    assert np.abs(r.frames[-1].displacement).max() > 0.0
+    assert r.probes["tip_deflection"] != 0.0
+
+
+def test_ctrl_c_stops_the_run_between_steps():
+    scene = isochor.Scene.builtin("cantilever").set("res", 1).set("steps", 100)
+    seen = []
+
+    def interrupt_soon(step, t, iterations):
+        seen.append(step)
+        if step == 1:
+            # Ctrl-C from another thread while the solver runs: SIGINT to the process.
+            threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT)).start()
+
+    with pytest.raises(KeyboardInterrupt) as info:
+        isochor.run(scene, progress=interrupt_soon)
+    r = info.value.result
+    stopped = int(r.steps["step"][-1])
+    assert 1 <= stopped < 100
+    # The signal is checked before the callback: the last step's call is made only if the
+    # signal arrived while it ran.
+    assert seen in (list(range(1, stopped)), list(range(1, stopped + 1)))
+    assert not r.converged and r.error == f"interrupted after step {stopped}: KeyboardInterrupt"
+    assert r.frames[-1].index == stopped
 
 
 def test_the_solve_releases_the_gil():

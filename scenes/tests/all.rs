@@ -12,6 +12,7 @@ mod common;
 mod compare;
 mod contact;
 mod contact_scenes;
+mod explicit_and_interrupt;
 mod finger_volume;
 mod frames;
 mod mesh_obstacles;

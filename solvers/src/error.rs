@@ -102,6 +102,13 @@ pub enum SolverError {
         /// The load parameter or time of the attempt.
         t: f64,
     },
+    /// The run's observer stopped the stepping after accepted step `after_step`
+    /// ([`Simulation::run_until`](crate::Simulation::run_until)).
+    #[error("interrupted after step {after_step}")]
+    Interrupted {
+        /// The last accepted step.
+        after_step: usize,
+    },
     /// Pressure load `load` met its limit point: past it no equilibrium holds a higher
     /// given pressure.
     #[error("pressure load {load} (loads.pressure.{load}) has reached its limit point: no equilibrium holds a pressure much above {pressure:e} Pa (the cavity at {volume_ratio:.4} times its rest volume; the pressure-volume slope along the accepted steps has fallen to {slope_fraction:.3} of its largest), so the increments are being cut in vain; drive the cavity by its volume instead: `volume_ratio = R` in place of `pressure` on that load traces the curve through and past the limit point")]

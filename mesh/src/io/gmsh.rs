@@ -14,8 +14,8 @@
 use super::text::{excerpt, Fields, Lines};
 use super::{assemble, read_text, Cells, FileNodes};
 use crate::element::TetElement;
+use crate::{corner_numbering, PhysicalGroup, PhysicalGroups};
 use crate::{ElementMesh, MeshError, TetMesh, Vec3};
-use crate::{PhysicalGroup, PhysicalGroups};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
@@ -80,17 +80,11 @@ pub fn read_gmsh_with_groups(
 ) -> Result<(ElementMesh, PhysicalGroups), MeshError> {
     let path = path.as_ref();
     let (nodes, cells, raw) = parse(path, &read_text(path)?)?;
-    // The mesh numbers the tets' corners first, in file order (see `ElementMesh::from_nodes`).
-    let n = cells.kind.num_nodes();
-    let mut vertex = vec![None; nodes.positions.len()];
-    for element in cells.connectivity.chunks_exact(n) {
-        for &i in &element[..4] {
-            vertex[i] = Some(0);
-        }
-    }
-    for (count, v) in vertex.iter_mut().flatten().enumerate() {
-        *v = count;
-    }
+    let vertex = corner_numbering(
+        &cells.connectivity,
+        cells.kind.num_nodes(),
+        nodes.positions.len(),
+    );
     let mut groups = Vec::new();
     for ((dimension, tag), group) in raw.groups {
         let name = raw.names.get(&(dimension, tag)).cloned();

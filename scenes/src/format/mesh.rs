@@ -5,6 +5,7 @@ use super::common::Vector;
 use isochor_mesh::io::PhysicalGroups;
 use isochor_mesh::{generate, MeshError, TetMesh, Vec3};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// Where the mesh comes from.
@@ -108,12 +109,18 @@ pub enum MeshSpec {
         /// Resolution: cells across the neck.
         res: usize,
     },
-    /// Explicit vertices and tets (small test scenes such as Fig. 2 of Sheen et al.).
+    /// Explicit nodes and tets (small test scenes such as Fig. 2 of Sheen et al., and the
+    /// arrays of `isochor.Problem` in Python), with named groups of their faces and tets.
     Explicit {
-        /// Vertex positions.
+        /// Node positions: every node a tet's, the corners before the mid-edge nodes (the
+        /// numbering `vertices` and the groups refer to).
         positions: Vec<Vector>,
-        /// Tets, as four vertex indices each.
-        tets: Vec<[usize; 4]>,
+        /// Tets, as 4 corner indices each, or 10 (the corners, then the mid-edge nodes in
+        /// Gmsh's order), all alike.
+        tets: Vec<Vec<usize>>,
+        /// Named groups for the selections' `physical` key.
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        groups: BTreeMap<String, GroupSpec>,
     },
     /// A mesh file: Gmsh `.msh`, TetGen `.node`/`.ele` (either name), or `.vtu`. A relative
     /// path is resolved against the scene file's folder (or the working directory).
@@ -121,6 +128,19 @@ pub enum MeshSpec {
         /// The file.
         path: PathBuf,
     },
+}
+
+/// A named group of an explicit mesh: boundary triangles (a surface group) or tets (a
+/// volume group), exactly one of the two.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupSpec {
+    /// Triangles, as three corner indices each.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub faces: Vec<[usize; 3]>,
+    /// Tet indices.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tets: Vec<usize>,
 }
 
 /// The true surface of a curved generator: the mid-edge node of a boundary edge on a curved
@@ -164,7 +184,7 @@ impl Generated {
 }
 
 impl MeshSpec {
-    /// The mesh of a generator (or of explicit vertices and tets); a mesh file is read, not
+    /// The mesh of a generator; a mesh file is read and an explicit mesh taken as it is, not
     /// generated (an error here).
     pub fn generate(&self) -> Result<Generated, MeshError> {
         match self {
@@ -216,10 +236,11 @@ impl MeshSpec {
             MeshSpec::Finger { res } => generate::finger(*res).map(Generated::grouped),
             MeshSpec::Torso { res } => generate::torso(*res).map(Generated::grouped),
             MeshSpec::Creature { res } => generate::creature(*res).map(Generated::grouped),
-            MeshSpec::Explicit { positions, tets } => {
-                TetMesh::new(positions.iter().map(|p| vec3(*p)).collect(), tets.clone())
-                    .map(Generated::plain)
-            }
+            MeshSpec::Explicit { .. } => Err(MeshError::parameter(
+                "generator",
+                "explicit",
+                "an explicit mesh is taken as it is, not generated",
+            )),
             MeshSpec::File { path } => Err(MeshError::parameter(
                 "generator",
                 format!("file ({})", path.display()),
@@ -259,7 +280,9 @@ impl MeshSpec {
             MeshSpec::Finger { res } => generate::finger_counts(*res),
             MeshSpec::Torso { res } => generate::torso_counts(*res),
             MeshSpec::Creature { res } => generate::creature_counts(*res),
-            MeshSpec::Explicit { positions, tets } => (positions.len() as f64, tets.len() as f64),
+            MeshSpec::Explicit {
+                positions, tets, ..
+            } => (positions.len() as f64, tets.len() as f64),
             MeshSpec::File { .. } => return None,
         })
     }

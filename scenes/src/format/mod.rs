@@ -43,7 +43,7 @@ pub use load::{load_scene, SceneSource};
 pub use material::{
     material_keys, rename_aliases, ConstantSpec, MaterialSpec, RegionSpec, MATERIAL_ALIASES,
 };
-pub use mesh::{Generated, MeshSpec, Surface};
+pub use mesh::{Generated, GroupSpec, MeshSpec, Surface};
 pub use names::{
     ComponentName, ElementName, EnergyName, KappaName, LengthUnit, LinearName, MethodName,
     ModelName, OrderingName, PointsName, PreconditionerName, PreviewField, Reduce, UnknownName,

@@ -20,6 +20,7 @@ use crate::problem::schedule::LoadLevel;
 use crate::settings::{Settings, VolumeProjection};
 use crate::terms::Inertia;
 use isochor_mesh::Vec3;
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 impl Simulation {
@@ -52,6 +53,20 @@ impl Simulation {
         &mut self,
         stepping: Stepping,
         mut observer: impl FnMut(&Frame<'_>),
+    ) -> Result<RunSummary, Box<SimulationFailure>> {
+        self.run_until(stepping, |frame| {
+            observer(frame);
+            ControlFlow::Continue(())
+        })
+    }
+
+    /// [`Simulation::run`] with an `observer` that may stop the stepping: when it returns
+    /// [`ControlFlow::Break`] after an accepted step, the run ends there with
+    /// [`SolverError::Interrupted`], the state left at that step (which the error carries).
+    pub fn run_until(
+        &mut self,
+        stepping: Stepping,
+        mut observer: impl FnMut(&Frame<'_>) -> ControlFlow<()>,
     ) -> Result<RunSummary, Box<SimulationFailure>> {
         let start = Instant::now();
         let plan = self
@@ -128,7 +143,10 @@ impl Simulation {
                 &cuts,
             );
             pressures.push(frame.pressure_loads.clone());
-            observer(&frame);
+            if observer(&frame).is_break() {
+                let e = SolverError::Interrupted { after_step: step };
+                return Err(failure(e, step + 1, &self.state, &reports));
+            }
             cuts.clear();
         }
         Ok(RunSummary {

@@ -86,7 +86,7 @@ pub(super) fn execute(
         sim.restore(solver)?;
         observer.resume(checkpoint);
     }
-    let outcome = sim.run(stepping, |frame| observer.observe(frame));
+    let outcome = sim.run_until(stepping, |frame| observer.observe(frame));
     let wall_time_s = observer.wall_time();
     observer.finish_stepping();
     if let Some(e) = observer.error.take() {

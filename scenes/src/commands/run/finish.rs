@@ -16,7 +16,7 @@ use crate::probes;
 use crate::record::{RunResult, StepRecord};
 use crate::resolve::problem;
 use isochor_mesh::{ElementMesh, Vec3};
-use isochor_solvers::{LoadLevel, RunSummary, SimulationFailure, State, StepReport};
+use isochor_solvers::{LoadLevel, RunSummary, SimulationFailure, SolverError, State, StepReport};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -50,11 +50,13 @@ impl Ending {
                 failed_step: None,
             },
             Err(failure) => Ending {
+                // An interrupted run has no failed step: it stopped between two.
+                failed_step: (!matches!(failure.error, SolverError::Interrupted { .. }))
+                    .then_some(failure.failed_step),
                 state: failure.last_state,
                 reports: failure.reports,
                 max_inverted: 0,
                 error: Some(failure.error.to_string()),
-                failed_step: Some(failure.failed_step),
             },
         }
     }

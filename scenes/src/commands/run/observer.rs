@@ -16,6 +16,7 @@ use isochor_solvers::{Checkpoint, Energies, Frame};
 use nalgebra::Matrix3;
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -97,8 +98,8 @@ impl<'a> Observer<'a> {
         self.earlier_wall_time + self.start.elapsed().as_secs_f64()
     }
 
-    /// Handles one accepted step.
-    pub fn observe(&mut self, frame: &Frame<'_>) {
+    /// Handles one accepted step; the library caller's hook may stop the run there.
+    pub fn observe(&mut self, frame: &Frame<'_>) -> ControlFlow<()> {
         let mut step = record(
             &self.body.mesh,
             frame.state,
@@ -136,14 +137,15 @@ impl<'a> Observer<'a> {
                 self.error = Some(e);
             }
         }
-        if let Some(hook) = &self.options.on_step {
-            (hook.0)(frame);
-        }
         self.bar.set_position(frame.progress.levels as u64);
         self.bar.set_message(format!(
             "{} Newton iterations",
             frame.report.newton_iterations()
         ));
+        match &self.options.on_step {
+            Some(hook) => (hook.0)(frame),
+            None => ControlFlow::Continue(()),
+        }
     }
 
     /// The value of the probe `output.potential_against` at this step, if the scene names

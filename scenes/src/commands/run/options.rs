@@ -3,13 +3,16 @@
 use crate::format::Override;
 use isochor_solvers::Frame;
 use std::fmt;
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::Arc;
 
 /// A function a library caller gives a run, called with every accepted step after the run has
-/// recorded it (to copy the step's fields out of the run, or to report its progress).
+/// recorded it (to copy the step's fields out of the run, or to report its progress). Its
+/// [`ControlFlow::Break`] stops the run there: the result is the run's up to that step, with
+/// the error "interrupted after step N".
 #[derive(Clone)]
-pub struct StepHook(pub Arc<dyn Fn(&Frame<'_>) + Send + Sync>);
+pub struct StepHook(pub Arc<dyn Fn(&Frame<'_>) -> ControlFlow<()> + Send + Sync>);
 
 impl fmt::Debug for StepHook {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
