@@ -33,6 +33,7 @@ fn one_tet(groups: &str) -> Result<Scene, SceneError> {
     let text = format!(
         r#"name = "one-tet10"
 method = "standard"
+element = "tet10"
 
 [mesh]
 generator = "explicit"
