@@ -16,7 +16,7 @@ mod records;
 mod resume;
 mod verify;
 
-pub use options::{RunOptions, StepHook};
+pub use options::{RunOptions, StepFn, StepHook};
 pub use resume::resume_run;
 
 use crate::error::SceneError;

@@ -12,7 +12,10 @@ use std::sync::Arc;
 /// [`ControlFlow::Break`] stops the run there: the result is the run's up to that step, with
 /// the error "interrupted after step N".
 #[derive(Clone)]
-pub struct StepHook(pub Arc<dyn Fn(&Frame<'_>) -> ControlFlow<()> + Send + Sync>);
+pub struct StepHook(pub Arc<StepFn>);
+
+/// The function of a [`StepHook`].
+pub type StepFn = dyn Fn(&Frame<'_>) -> ControlFlow<()> + Send + Sync;
 
 impl fmt::Debug for StepHook {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
