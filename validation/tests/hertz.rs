@@ -417,27 +417,37 @@ fn the_mixed_sphere_follows_hertz_and_the_standard_one_locks() {
 }
 
 #[test]
-fn two_spheres_share_the_approach_and_follow_hertz_in_magnitude() {
-    let case = Case {
+fn two_spheres_share_the_approach_and_carry_the_sphere_on_the_plate() {
+    let twin = Case {
         against: Counterpart::Twin,
         steps: 2,
         dhat: 1e-3,
         ..Case::plate(TetElement::Tet4, Method::MixedP1, 3)
     };
-    let (samples, _) = indent(case);
-    for s in &samples {
-        let [a, b] = s.indentations;
-        let ratio = s.force / Counterpart::Twin.hertz(s.approach);
+    let (pair, _) = indent(twin);
+    let (plate, _) = indent(Case {
+        against: Counterpart::Plate,
+        ..twin
+    });
+    for (p, s) in pair.iter().zip(&plate) {
+        let [a, b] = p.indentations;
+        let (ep, es) = (p.error(Counterpart::Twin), s.error(Counterpart::Plate));
         eprintln!(
-            "hertz two spheres tet4 res 3: approach/R {:.4}, indentations/R {:.5} {:.5}, F/Hertz {ratio:.3}",
-            s.approach / RADIUS,
+            "hertz two spheres tet4 res 3: approach/R {:.4}, indentations/R {:.5} {:.5}, error {:+.1}% (one on the plate {:+.1}%)",
+            p.approach / RADIUS,
             a / RADIUS,
-            b / RADIUS
+            b / RADIUS,
+            100.0 * ep,
+            100.0 * es
         );
         // The two bodies are mirror images in the contact plane, and so is the solution.
-        assert!((a - b).abs() < 1e-3 * s.approach, "indentations {a}, {b}");
-        // Hertz's magnitude, within the coarse mesh's factor (its plate twin is 20-60% stiff).
-        assert!(ratio > 0.5 && ratio < 2.0, "F / F_Hertz = {ratio}");
+        assert!((a - b).abs() < 1e-3 * p.approach, "indentations {a}, {b}");
+        // By that symmetry the contact plane stays flat and frictionless: each sphere of the
+        // pair is the sphere on the plate, and Hertz's combined law holds as the single one
+        // does (a wrong combined modulus or radius would be off by a factor of 2 or more).
+        // What differs is the barrier between two surfaces instead of one, within the
+        // effect of `dhat` itself (under 2 points at 1e-3 R, `hertz_study_effects`).
+        assert!((ep - es).abs() < 0.02, "pair {ep}, plate {es}");
     }
 }
 
@@ -508,7 +518,7 @@ fn hertz_study_two_spheres() {
     for (p, s) in pair.iter().zip(&plate) {
         let [a, b] = p.indentations;
         assert!((a - b).abs() < 1e-3 * p.approach, "indentations {a}, {b}");
-        // Each sphere of the pair is the sphere on the plate: the same error against Hertz.
+        // Each sphere of the pair is the sphere on the plate (see the fast test).
         let (ep, es) = (p.error(Counterpart::Twin), s.error(Counterpart::Plate));
         assert!((ep - es).abs() < 0.02, "pair {ep}, plate {es}");
     }
