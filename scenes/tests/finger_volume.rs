@@ -58,7 +58,10 @@ fn pressure_control_stops_at_the_limit_point() {
     eprintln!(
         "pressure control stopped at {reached:.2} Pa (V/V0 {stopped_at:.4}); volume control there: {held:.2} Pa"
     );
-    assert!((held / reached - 1.0).abs() < 1e-6, "{held} against {reached}");
+    assert!(
+        (held / reached - 1.0).abs() < 1e-6,
+        "{held} against {reached}"
+    );
 }
 
 /// The reduced finger-volume (res 1, tet4, to 3.5 times the chambers' rest volume in 4

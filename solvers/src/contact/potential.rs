@@ -187,15 +187,16 @@ impl BarrierPotential {
     ) -> Vec<([usize; 4], SMatrix<f64, 12, 12>)> {
         pairs(surface, candidates, rest)
             .map(|pair| {
-                let block = self
-                    .local(&pair, &pair.nodes.map(|n| x[n]))
-                    .map_or_else(SMatrix::zeros, |local| {
+                let block = self.local(&pair, &pair.nodes.map(|n| x[n])).map_or_else(
+                    SMatrix::zeros,
+                    |local| {
                         if project {
                             project_to_psd(&local.hessian)
                         } else {
                             local.hessian
                         }
-                    });
+                    },
+                );
                 (pair.nodes, block)
             })
             .collect()
