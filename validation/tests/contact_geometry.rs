@@ -724,53 +724,6 @@ proptest! {
         prop_assert!(eigen.min() >= -1e-9 * (eigen.amax() + kappa), "eigenvalues {:e} to {:e}", eigen.min(), eigen.max());
         prop_assert!(BarrierPotential::min_distance(&surface, &candidates, &rest, &x) > 0.0);
     }
-
-    /// The exact (unprojected) Hessian blocks, which the saddle-point Newton takes, against
-    /// central differences of the gradient, column by column.
-    #[test]
-    fn barrier_potential_exact_hessian(gap in 0.02..0.08f64, kappa in 0.1..10.0f64, shift in vec3()) {
-        let (surface, rest, bodies) = two_balls(2, gap);
-        let x: Vec<Vec3> = rest.iter().enumerate().map(|(i, p)| {
-            let s = shift * 0.01;
-            if bodies[i] == 1 { p + s } else { *p }
-        }).collect();
-        let potential = BarrierPotential { dhat: 0.1, kappa };
-        let candidates = contact_candidates(&surface, &x, None, 0.3, PairFilter::BetweenBodies(&bodies));
-        let gradient = |y: &[Vec3]| {
-            let mut g = vec![0.0; 3 * y.len()];
-            potential.add_gradient(&surface, &candidates, &rest, y, &mut g);
-            g
-        };
-        let n = 3 * x.len();
-        let mut dense = DMatrix::<f64>::zeros(n, n);
-        for (nodes, block) in potential.hessian_blocks(&surface, &candidates, &rest, &x, false) {
-            for (i, &ni) in nodes.iter().enumerate() {
-                for (j, &nj) in nodes.iter().enumerate() {
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            dense[(3 * ni + a, 3 * nj + b)] += block[(3 * i + a, 3 * j + b)];
-                        }
-                    }
-                }
-            }
-        }
-        let scale = dense.amax();
-        prop_assert!(scale > 0.0);
-        let h = 1e-7;
-        let mut checked = 0;
-        for k in (0..n).filter(|&k| dense.column(k).amax() > 1e-3 * scale).take(12) {
-            let (mut p, mut m) = (x.clone(), x.clone());
-            p[k / 3][k % 3] += h;
-            m[k / 3][k % 3] -= h;
-            let (gp, gm) = (gradient(&p), gradient(&m));
-            for i in 0..n {
-                let fd = (gp[i] - gm[i]) / (2.0 * h);
-                prop_assert!((fd - dense[(i, k)]).abs() <= 1e-5 * scale, "({i}, {k}): {} against {fd}", dense[(i, k)]);
-            }
-            checked += 1;
-        }
-        prop_assert!(checked > 0);
-    }
 }
 
 #[test]

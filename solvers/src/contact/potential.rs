@@ -173,30 +173,22 @@ impl BarrierPotential {
         pairs(surface, candidates, rest).map(|p| p.nodes).collect()
     }
 
-    /// The Hessian block of every candidate pair at `x`, in the candidates' order
-    /// (point-triangle pairs, then edge-edge pairs): the pair's four nodes and its `12 x 12`
-    /// block (zero beyond `dhat`), projected onto the PSD cone if `project`. The nodes depend
-    /// on the candidates only, so a fixed candidate set has a fixed sparsity pattern.
+    /// The PSD-projected Hessian block of every candidate pair at `x`, in the candidates'
+    /// order (point-triangle pairs, then edge-edge pairs): the pair's four nodes and its
+    /// `12 x 12` block (zero beyond `dhat`). The nodes depend on the candidates only, so a
+    /// fixed candidate set has a fixed sparsity pattern.
     pub fn hessian_blocks(
         &self,
         surface: &ContactSurface,
         candidates: &Candidates,
         rest: &[Vec3],
         x: &[Vec3],
-        project: bool,
     ) -> Vec<([usize; 4], SMatrix<f64, 12, 12>)> {
         pairs(surface, candidates, rest)
             .map(|pair| {
-                let block = self.local(&pair, &pair.nodes.map(|n| x[n])).map_or_else(
-                    SMatrix::zeros,
-                    |local| {
-                        if project {
-                            project_to_psd(&local.hessian)
-                        } else {
-                            local.hessian
-                        }
-                    },
-                );
+                let block = self
+                    .local(&pair, &pair.nodes.map(|n| x[n]))
+                    .map_or_else(SMatrix::zeros, |local| project_to_psd(&local.hessian));
                 (pair.nodes, block)
             })
             .collect()
@@ -212,7 +204,7 @@ impl BarrierPotential {
         x: &[Vec3],
     ) -> Vec<(usize, usize, f64)> {
         let mut triplets = Vec::new();
-        for (nodes, h) in self.hessian_blocks(surface, candidates, rest, x, true) {
+        for (nodes, h) in self.hessian_blocks(surface, candidates, rest, x) {
             if h.iter().all(|&v| v == 0.0) {
                 continue;
             }

@@ -453,19 +453,13 @@ impl Model {
 
     /// Turns barrier contact between the boundary surfaces on (every 6-node face as its four
     /// 3-node triangles), its stiffness bounded for the shear stiffness `mu h` of a node's
-    /// cells (Li et al. 2020, supplement); the pairs' Hessians exact under the saddle-point
-    /// schemes, PSD-projected under the others ([`SurfaceContact::with_exact_hessian`]).
+    /// cells (Li et al. 2020, supplement).
     pub fn set_surface_contact(&mut self, spec: SurfaceContactSpec) -> Result<(), SolverError> {
         let surface = ContactSurface::from_element_surface(&self.mesh.boundary()?);
         let corners = self.mesh.corners();
         let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
         let contact = SurfaceContact::new(spec, surface, self.mesh.nodes().to_vec(), self.mu * h)?;
-        self.surface_contact = Some(match self.scheme {
-            NonlinearScheme::SaddleDirect | NonlinearScheme::SaddleSchur => {
-                contact.with_exact_hessian()
-            }
-            NonlinearScheme::Minimize | NonlinearScheme::Dual => contact,
-        });
+        self.surface_contact = Some(contact);
         Ok(())
     }
 

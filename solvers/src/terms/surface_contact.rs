@@ -80,9 +80,6 @@ pub struct SurfaceContact {
     bounds: StiffnessBounds,
     bbox_diagonal: f64,
     ccd: CcdSettings,
-    /// Whether the pairs' Hessian blocks are projected onto the PSD cone
-    /// ([`SurfaceContact::with_exact_hessian`]).
-    project: bool,
     active: RwLock<Active>,
 }
 
@@ -116,7 +113,6 @@ impl SurfaceContact {
         let bounds = StiffnessBounds::new(bbox_diagonal, spec.dhat, stiffness_scale);
         Ok(SurfaceContact {
             ccd: CcdSettings::for_scale(0.0, bbox_diagonal),
-            project: true,
             active: RwLock::new(Active {
                 kappa: bounds.min,
                 previous_min_distance: f64::INFINITY,
@@ -183,19 +179,6 @@ impl SurfaceContact {
             rigid,
             ..self
         })
-    }
-
-    /// The term with each pair's exact Hessian block in place of its PSD projection: for
-    /// the saddle-point Newton, whose line search asks the residual's norm to fall, which the
-    /// Newton direction of the exact Hessian guarantees and the projected one does not (the
-    /// projection drops the barrier's negative curvature across the distance, `b' hess d`,
-    /// and the iterations then converge linearly); the KKT solver's inertia check shifts an
-    /// indefinite stiffness.
-    pub fn with_exact_hessian(self) -> Self {
-        SurfaceContact {
-            project: false,
-            ..self
-        }
     }
 
     /// The meshed obstacles.
@@ -472,8 +455,7 @@ impl EnergyTerm for SurfaceContact {
             }
         }
         if let Some(h) = hessian {
-            let blocks =
-                potential.hessian_blocks(&self.surface, candidates, &self.rest, &x, self.project);
+            let blocks = potential.hessian_blocks(&self.surface, candidates, &self.rest, &x);
             let rows = self.rows();
             let mut at = 0;
             for (nodes, block) in &blocks {
