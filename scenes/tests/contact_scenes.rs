@@ -177,12 +177,14 @@ fn a_bad_reach_is_refused_by_key() {
 
 /// The tube squashed until its inner walls touch: on every accepted step the volume is the
 /// rest volume to the constraint tolerance (`nu = 0.5`, mixed-p1: each nodal row holds its
-/// volume to `tau_c` of its rest volume, and the rows sum to the whole volume), every pair
-/// of primitives within `dhat` is apart, and at the end the inner wall touches itself
-/// (pairs within `dhat`).
+/// volume to `tau_c` of its rest volume, and the rows sum to the whole volume) and every pair
+/// of primitives within `dhat` is apart; at the end the inner wall touches itself: its two
+/// sides in the symmetry plane x = 0 are closer than `dhat` and apart, and pairs are
+/// within `dhat`.
 #[test]
 fn the_squashed_tube_keeps_its_volume_and_its_walls_apart() {
     let scene = reduced("squashed-tube", &[]);
+    let dhat = scene.contact.as_ref().unwrap().dhat.unwrap();
     let mut steps = Vec::new();
     let ran = run_checked(&scene, |mesh, frame| {
         let volume: f64 = mesh.volumes_at(&frame.state.positions).iter().sum();
@@ -226,7 +228,11 @@ fn the_squashed_tube_keeps_its_volume_and_its_walls_apart() {
             .map(|s| (s.0 / rest - 1.0).abs())
             .fold(0.0, f64::max)
     );
-    assert!(*pairs > 0, "the inner walls touch at the end");
+    assert!(*pairs > 0, "pairs within dhat at the end");
+    assert!(
+        gap > 0.0 && gap < dhat && *distance < dhat,
+        "the inner walls touch at the end: {gap:e} m apart, dhat {dhat:e}"
+    );
 }
 
 /// The pads squeeze the cylinder, then lift it by `L` = 10 mm (their backs are driven). Held
