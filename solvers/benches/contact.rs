@@ -9,7 +9,9 @@
 //! solved state: the broad phase, the barrier's and the friction's gradient and Hessian,
 //! the CCD of a line-search step (the step's whole displacement), and the two terms'
 //! energies (what a line-search trial adds for contact). `ISOCHOR_BENCH_CELLS` sets the slabs' cells per
-//! side (48 by default; 12 for a quick check).
+//! side (48 by default; 12 for a quick check); `ISOCHOR_BENCH_CONTACT=off` solves the same
+//! slabs without contact (each on its own supports) and times nothing, for the peak memory
+//! against the run with contact (`/usr/bin/time -v`).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use isochor_mesh::contact::{contact_candidates, ContactSurface, PairFilter};
@@ -92,12 +94,14 @@ fn friction_spec() -> FrictionSpec {
     }
 }
 
-/// One quasi-static step of the slabs with contact and friction.
-fn solve(problem: Problem, bodies: Vec<usize>) -> RunSummary {
+/// One quasi-static step of the slabs, with contact and friction if `contact`.
+fn solve(problem: Problem, bodies: Vec<usize>, contact: bool) -> RunSummary {
     let mut sim = Simulation::new(problem, Settings::default()).expect("a valid simulation");
-    sim.set_surface_contact(contact_spec(bodies))
-        .expect("valid contact");
-    sim.set_friction(friction_spec()).expect("valid friction");
+    if contact {
+        sim.set_surface_contact(contact_spec(bodies))
+            .expect("valid contact");
+        sim.set_friction(friction_spec()).expect("valid friction");
+    }
     sim.run(Stepping::quasi_static(1), |_| {})
         .expect("the slabs converge")
 }
@@ -143,8 +147,12 @@ fn bench(c: &mut Criterion) {
     let (problem, bodies) = slabs(cells);
     let mesh = problem.mesh.clone();
     let tets = mesh.num_elements();
-    let summary = solve(problem, bodies.clone());
+    let contact = std::env::var("ISOCHOR_BENCH_CONTACT").as_deref() != Ok("off");
+    let summary = solve(problem, bodies.clone(), contact);
     print_split(&summary, tets);
+    if !contact {
+        return;
+    }
 
     // The contact terms on their own, built as the model builds them, at the solved state.
     let rest = mesh.nodes().to_vec();
