@@ -48,6 +48,10 @@ pub struct StepRecord {
     pub external_energy: f64,
     /// Wall time of the step in seconds.
     pub wall_time_s: f64,
+    /// Rebuilds of the Newton matrix's sparsity pattern and symbolic factorization in the
+    /// step, because the surface contact's or friction's pairs changed.
+    #[serde(default)]
+    pub pattern_rebuilds: usize,
     /// The value of the probe `output.potential_against` names, at this step (`None` when
     /// the scene names none).
     #[serde(default, skip_serializing_if = "Option::is_none")]

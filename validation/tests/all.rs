@@ -6,6 +6,7 @@ mod assembled;
 mod cloth;
 mod common;
 mod constraints;
+mod contact_forces;
 mod contact_geometry;
 mod contact_term;
 mod dynamics;

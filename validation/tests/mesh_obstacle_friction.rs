@@ -18,7 +18,7 @@ const DT: f64 = 0.005;
 const STEPS: usize = 20;
 
 /// The OBJ square `[-0.05, 0.1] x [-0.05, 0.07]` at `z = 0` in a scratch folder.
-fn plate_file() -> String {
+pub fn plate_file() -> String {
     let dir = std::env::temp_dir().join(format!("isochor-mesh-friction-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("plate.obj");

@@ -63,7 +63,7 @@ fn volume_error(errors: &[f64], i: usize) -> String {
 }
 
 /// `steps.csv`: one row per accepted step or frame; after the fixed columns, the barrier's
-/// `contact_pairs`, per obstacle of `obstacles` (their names, in the scene's order) the force
+/// `contact_pairs` and the step's `pattern_rebuilds`, per obstacle of `obstacles` (their names, in the scene's order) the force
 /// it exerts on the bodies as `contact_force_<name>_x,_y,_z`, and per pair of bodies `a_b`
 /// of `body_pairs` the force body `b` exerts on body `a` as `contact_force_a_b_x,_y,_z`.
 pub fn write_steps_csv(
@@ -73,7 +73,7 @@ pub fn write_steps_csv(
     body_pairs: &[String],
 ) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts,contact_pairs",
+        "step,t,newton_iterations,converged,force_residual,constraint_residual,volume_change,inverted_tets,kinetic_energy,elastic_energy,external_energy,total_energy,constraint_energy,wall_time_s,contact_force_x,contact_force_y,contact_force_z,active_contacts,max_penetration,contact_iterations,increment,cuts,contact_pairs,pattern_rebuilds",
     );
     for name in obstacles.iter().chain(body_pairs) {
         for axis in ["x", "y", "z"] {
@@ -117,10 +117,10 @@ pub fn write_steps_csv(
             s.increment,
             s.cuts.len()
         );
-        // The row's tail: the pairs, each obstacle's force, each pair of bodies' force,
+        // The row's tail: the pairs, the pattern rebuilds, each obstacle's force, each pair of bodies' force,
         // each pressure load's pressure and volume ratio.
         out.pop();
-        let _ = write!(out, ",{}", s.contact.pairs);
+        let _ = write!(out, ",{},{}", s.contact.pairs, s.pattern_rebuilds);
         let forces = |all: &[[f64; 3]], k: usize| all.get(k).copied().unwrap_or([0.0; 3]);
         for f in (0..obstacles.len())
             .map(|k| forces(&s.contact.obstacle_forces, k))

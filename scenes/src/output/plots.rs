@@ -326,6 +326,7 @@ mod tests {
             constraint_energy: 0.0,
             external_energy: -0.5 * step as f64,
             wall_time_s: 0.0,
+            pattern_rebuilds: 0,
             tracked_probe: None,
             contact: Default::default(),
             pressure_loads: Vec::new(),

@@ -46,6 +46,9 @@ pub struct System<'m> {
     pub jacobian_values: Vec<f64>,
     /// Time spent assembling since the last [`System::take_assembly_time`].
     assembly_time: Duration,
+    /// Of that and of the pattern updates: the surface contact's and friction's, since the
+    /// last [`System::take_contact_time`].
+    contact_time: Duration,
 }
 
 impl<'m> System<'m> {
@@ -109,6 +112,7 @@ impl<'m> System<'m> {
             jacobian,
             jacobian_values: vec![0.0; jacobian_len],
             assembly_time: Duration::ZERO,
+            contact_time: Duration::ZERO,
         })
     }
 
@@ -144,12 +148,12 @@ impl<'m> System<'m> {
         let Some(contact) = &self.model.surface_contact else {
             return Ok(false);
         };
-        // The blocks' index: the model's terms, then the folded constraints, the obstacles.
-        let block = self.model.terms.len()
-            + usize::from(self.model.augmented.is_some())
-            + usize::from(self.model.contact.is_some());
+        let block = self.surface_blocks().start;
         let mut changed = false;
-        if contact.update(x) {
+        let start = Instant::now();
+        let updated = contact.update(x);
+        self.contact_time += start.elapsed();
+        if updated {
             self.splice(block, contact.hessian_pattern());
             changed = true;
         }
@@ -166,6 +170,17 @@ impl<'m> System<'m> {
         self.hessian_values = vec![0.0; self.pairs.len()];
         self.pattern_rebuilds += 1;
         Ok(true)
+    }
+
+    /// The blocks of the surface contact and surface friction terms (empty without surface
+    /// contact): after the model's terms, the folded constraints and the obstacles.
+    fn surface_blocks(&self) -> std::ops::Range<usize> {
+        let start = self.model.terms.len()
+            + usize::from(self.model.augmented.is_some())
+            + usize::from(self.model.contact.is_some());
+        let count = usize::from(self.model.surface_contact.is_some())
+            + usize::from(self.model.surface_friction.is_some());
+        start..start + count
     }
 
     /// Replaces the pattern of block `block` by `new`.
@@ -243,14 +258,21 @@ impl<'m> System<'m> {
     ) -> Result<(f64, f64), SolverError> {
         let (mut energy, mut magnitude) = (0.0, 0.0);
         let mut rest = values;
+        let surface = self.surface_blocks();
+        let mut contact_time = Duration::ZERO;
         for (block, term) in self.terms().enumerate() {
             let len = self.offsets[block + 1] - self.offsets[block];
             let (mine, tail) = rest.split_at_mut(len);
             rest = tail;
+            let start = Instant::now();
             let e = term.evaluate(x, level, Some(&mut *gradient), Some(mine))?;
+            if surface.contains(&block) {
+                contact_time += start.elapsed();
+            }
             energy += e;
             magnitude += e.abs() + term.rounding_scale();
         }
+        self.contact_time += contact_time;
         if let (Some(c), Some(p)) = (&self.model.constraints, multipliers) {
             c.geometric_stiffness_values(x, p, rest)?;
             c.jacobian_values(x, &mut self.jacobian_values)?;
@@ -281,5 +303,11 @@ impl<'m> System<'m> {
     /// Assembly time since the last call.
     pub fn take_assembly_time(&mut self) -> Duration {
         std::mem::take(&mut self.assembly_time)
+    }
+
+    /// The surface contact's and friction's share of the assemblies and pattern updates
+    /// since the last call.
+    pub fn take_contact_time(&mut self) -> Duration {
+        std::mem::take(&mut self.contact_time)
     }
 }

@@ -12,7 +12,7 @@ use isochor_mesh::contact::{
     Derivatives, DistanceKind,
 };
 use isochor_mesh::Vec3;
-use nalgebra::SMatrix;
+use nalgebra::{SMatrix, SVector};
 
 /// The barrier potential with reach `dhat` (a distance) and stiffness `kappa`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -153,15 +153,30 @@ impl BarrierPotential {
         x: &[Vec3],
         gradient: &mut [f64],
     ) {
-        for pair in pairs(surface, candidates, rest) {
-            if let Some(local) = self.local(&pair, &pair.nodes.map(|n| x[n])) {
-                for (i, &n) in pair.nodes.iter().enumerate() {
-                    for a in 0..3 {
-                        gradient[3 * n + a] += local.gradient[3 * i + a];
-                    }
+        for (nodes, local) in self.pair_gradients(surface, candidates, rest, x) {
+            for (i, &n) in nodes.iter().enumerate() {
+                for a in 0..3 {
+                    gradient[3 * n + a] += local[3 * i + a];
                 }
             }
         }
+    }
+
+    /// Every candidate pair within `dhat` at `x` with the gradient of its potential on its
+    /// four nodes (12 coordinates, node-major).
+    pub fn pair_gradients(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+    ) -> Vec<([usize; 4], SVector<f64, 12>)> {
+        pairs(surface, candidates, rest)
+            .filter_map(|pair| {
+                let local = self.local(&pair, &pair.nodes.map(|n| x[n]))?;
+                Some((pair.nodes, local.gradient))
+            })
+            .collect()
     }
 
     /// The four nodes of every candidate pair, in the order of [`Self::hessian_blocks`].

@@ -184,6 +184,7 @@ impl Newton {
                 return Ok(true);
             }
             report.timings.assembly += system.take_assembly_time();
+            report.timings.contact += system.take_contact_time();
 
             let (shift, linear_iterations) = self.solve_linear(
                 k.as_ref(),
@@ -208,7 +209,9 @@ impl Newton {
             // decides instead of the Armijo condition.
             let noise = 1e3 * f64::EPSILON * eval.magnitude;
             // No surface pair may cross on the way (continuous collision detection).
+            let line_search = Instant::now();
             let mut alpha = system.max_step(x, &direction);
+            report.timings.ccd += line_search.elapsed();
             let mut accepted = None;
             for backtracks in 0..=settings.max_backtracks {
                 let mut trial = x.to_vec();
@@ -230,6 +233,7 @@ impl Newton {
                 }
                 alpha *= 0.5;
             }
+            report.timings.line_search += line_search.elapsed();
             report.timings.assembly += system.take_assembly_time();
             let Some((trial, backtracks)) = accepted else {
                 return Err(SolverError::LineSearch {

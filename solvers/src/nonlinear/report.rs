@@ -34,6 +34,14 @@ pub struct Timings {
     pub factorization: Duration,
     /// Triangular solves, refinement and iterative solves.
     pub solve: Duration,
+    /// Part of `assembly`: the surface contact's broad phase at each pattern update and the
+    /// barrier and surface friction terms of the Newton-matrix assemblies.
+    pub contact: Duration,
+    /// The line searches: continuous collision detection, trial states' validity checks and
+    /// evaluations (those evaluations count in `assembly` too).
+    pub line_search: Duration,
+    /// Part of `line_search`: the continuous collision detection bounding each step.
+    pub ccd: Duration,
 }
 
 impl std::ops::AddAssign for Timings {
@@ -41,6 +49,9 @@ impl std::ops::AddAssign for Timings {
         self.assembly += other.assembly;
         self.factorization += other.factorization;
         self.solve += other.solve;
+        self.contact += other.contact;
+        self.line_search += other.line_search;
+        self.ccd += other.ccd;
     }
 }
 
@@ -75,6 +86,10 @@ pub struct StepReport {
     /// Lags of the friction's normal forces after the first (0 without friction): the solves
     /// the friction took beyond the contact's own.
     pub friction_lags: usize,
+    /// Rebuilds of the Newton matrix's sparsity pattern, each with a new symbolic
+    /// factorization, because the surface contact's or friction's pairs changed (0 without
+    /// surface contact).
+    pub pattern_rebuilds: usize,
     /// Contact forces at the accepted state (zero without obstacles).
     pub contact: ContactSummary,
     /// Why the attempt failed, if it was cut (retried with a smaller increment) or ended

@@ -332,6 +332,7 @@ impl SaddleNewton {
                 return Ok(());
             }
             report.timings.assembly += system.take_assembly_time();
+            report.timings.contact += system.take_contact_time();
 
             if let Linear::Iterative(state) = &mut self.linear {
                 // No single tolerance applies to the mixed force/volume norm: target 0.
@@ -354,7 +355,9 @@ impl SaddleNewton {
                         || m <= (1.0 - 2.0 * ARMIJO * alpha) * merit0)
             };
             // No surface pair may cross on the way (continuous collision detection).
+            let line_search = Instant::now();
             let mut alpha = system.max_step(x, &direction);
+            report.timings.ccd += line_search.elapsed();
             let mut accepted = None;
             for backtracks in 0..=settings.max_backtracks {
                 let mut trial_x = x.to_vec();
@@ -395,7 +398,13 @@ impl SaddleNewton {
                             .zip(x.iter())
                             .flat_map(|(c, a)| (c - a).iter().copied().collect::<Vec<_>>())
                             .collect();
-                        if system.is_valid(&corrected_x) && system.max_step(x, &path) == 1.0 {
+                        let clear = system.is_valid(&corrected_x) && {
+                            let ccd = Instant::now();
+                            let full_step = system.max_step(x, &path) == 1.0;
+                            report.timings.ccd += ccd.elapsed();
+                            full_step
+                        };
+                        if clear {
                             let (s, t) =
                                 self.residuals(system, &corrected_x, &corrected_p, &target.level)?;
                             if acceptable(merit(&system.model.dofs.gather(&s), &t), 1.0) {
@@ -407,6 +416,7 @@ impl SaddleNewton {
                 }
                 alpha *= 0.5;
             }
+            report.timings.line_search += line_search.elapsed();
             report.timings.assembly += system.take_assembly_time();
             let Some((trial_x, trial_p, backtracks)) = accepted else {
                 return Err(SolverError::LineSearch {

@@ -47,7 +47,7 @@ impl Simulation {
                 .model
                 .surface_contact
                 .as_ref()
-                .map(|c| c.summary(&self.state.positions)),
+                .map(|c| c.summary(&self.state.positions, self.model.surface_friction.as_ref())),
             mesh_obstacles: self
                 .model
                 .surface_contact

@@ -293,11 +293,13 @@ impl<'s> Run<'s> {
             start: &state.positions,
             start_level,
         };
+        let rebuilds = self.system.pattern_rebuilds;
         let result = placed.and_then(|()| {
             friction.lag(&self.system, &x);
             self.solve(&mut x, &mut p, &target, &friction, &mut report)
                 .and_then(|()| self.check_domain(&x))
         });
+        report.pattern_rebuilds = self.system.pattern_rebuilds - rebuilds;
         if let Some(contact) = &self.system.model.contact {
             report.contact = contact.summary(&x);
         }

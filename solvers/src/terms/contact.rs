@@ -37,6 +37,7 @@ use crate::contact::{plane_basis, FrictionPair};
 use crate::error::SolverError;
 use crate::problem::obstacle::Obstacle;
 use crate::problem::schedule::LoadLevel;
+use isochor_mesh::contact::Derivatives;
 use isochor_mesh::Vec3;
 use nalgebra::Matrix3;
 use std::sync::{RwLock, RwLockWriteGuard};
@@ -44,7 +45,8 @@ use std::sync::{RwLock, RwLockWriteGuard};
 /// Totals of the contact forces at a state.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ContactSummary {
-    /// Sum of the normal forces the obstacles exert on the body.
+    /// Sum of the forces the obstacles exert on the body: normal, plus the friction's
+    /// tangential ones.
     pub force: Vec3,
     /// The same per obstacle, in the problem's order (two cylinders squeezing a body push
     /// with opposite forces that cancel in the sum).
@@ -314,8 +316,9 @@ impl Contact {
         forces
     }
 
-    /// Total force (from the multipliers, as [`Contact::vertex_forces`]), active vertices
-    /// (a positive multiplier) and largest penetration at `x`.
+    /// Total force (the normal forces of the multipliers, as [`Contact::vertex_forces`],
+    /// plus the lagged friction's tangential forces, minus its gradient), active vertices (a
+    /// positive multiplier) and largest penetration at `x`.
     pub fn summary(&self, x: &[Vec3]) -> ContactSummary {
         let state = self.state();
         let m = self.obstacles.len();
@@ -331,12 +334,40 @@ impl Contact {
             active[a] |= f > 0.0;
             summary.max_penetration = summary.max_penetration.max(-d);
         }
+        self.for_each_friction_pair(x, |_, k, d| {
+            let f = -Vec3::new(d.gradient[0], d.gradient[1], d.gradient[2]);
+            summary.force += f;
+            summary.obstacle_forces[k] += f;
+        });
         summary.active_vertices = active.iter().filter(|&&b| b).count();
         summary
     }
 }
 
 impl Contact {
+    /// Calls `each(a, k, derivatives)` for every frozen friction pair of candidate vertex `a`
+    /// and obstacle `k` with the derivatives of its potential at `x` (the vertex's
+    /// coordinates first).
+    fn for_each_friction_pair(
+        &self,
+        x: &[Vec3],
+        mut each: impl FnMut(usize, usize, &Derivatives<12>),
+    ) {
+        let lagged = self.lagged.read().unwrap_or_else(|e| e.into_inner());
+        let m = self.obstacles.len();
+        for (index, pair) in lagged.pairs.iter().enumerate() {
+            let Some(pair) = pair else { continue };
+            let (a, k) = (index / m, index % m);
+            let u = [
+                x[self.vertices[a]] - lagged.start[a],
+                lagged.motion[k],
+                Vec3::zeros(),
+                Vec3::zeros(),
+            ];
+            each(a, k, &pair.derivatives(&u));
+        }
+    }
+
     /// The lagged friction at `x`: its energy, gradient and Hessian (the vertex's `3 x 3`
     /// block of the pair's, positive semidefinite) added in.
     fn add_friction(
@@ -345,21 +376,10 @@ impl Contact {
         mut gradient: Option<&mut [f64]>,
         mut hessian: Option<&mut [f64]>,
     ) -> f64 {
-        let lagged = self.lagged.read().unwrap_or_else(|e| e.into_inner());
-        let m = self.obstacles.len();
         let mut energy = 0.0;
-        for (index, pair) in lagged.pairs.iter().enumerate() {
-            let Some(pair) = pair else { continue };
-            let (a, k) = (index / m, index % m);
-            let v = self.vertices[a];
-            let u = [
-                x[v] - lagged.start[a],
-                lagged.motion[k],
-                Vec3::zeros(),
-                Vec3::zeros(),
-            ];
-            let d = pair.derivatives(&u);
+        self.for_each_friction_pair(x, |a, _, d| {
             energy += d.value;
+            let v = self.vertices[a];
             if let Some(g) = gradient.as_deref_mut() {
                 for c in 0..3 {
                     g[3 * v + c] += d.gradient[c];
@@ -372,7 +392,7 @@ impl Contact {
                     }
                 }
             }
-        }
+        });
         energy
     }
 }

@@ -19,7 +19,7 @@ mod rigid;
 mod step_limit;
 
 use super::pair_rows::PairRows;
-use super::surface_friction::FrictionLag;
+use super::surface_friction::{FrictionLag, SurfaceFriction};
 use super::EnergyTerm;
 use crate::contact::{BarrierPotential, StiffnessBounds};
 use crate::error::SolverError;
@@ -29,6 +29,7 @@ use isochor_mesh::contact::{
     contact_candidates, intersecting_triangles, Candidates, CcdSettings, ContactSurface, PairFilter,
 };
 use isochor_mesh::Vec3;
+use nalgebra::SVector;
 use rigid::RigidSurfaces;
 use std::sync::RwLock;
 
@@ -50,10 +51,12 @@ pub struct SurfaceContactSummary {
     pub pairs_within_dhat: usize,
     /// The smallest distance between two primitives (`+inf` when none is within `dhat`).
     pub min_distance: f64,
-    /// The force each meshed obstacle exerts on the bodies, in order.
+    /// The force each meshed obstacle exerts on the bodies, in order: normal (the barrier's)
+    /// and tangential (the friction's).
     pub obstacle_forces: Vec<Vec3>,
     /// For each pair of bodies `(a, b)`, `a < b`, in the order `(0, 1), (0, 2), ..., (1, 2),
-    /// ...`: the force body `b` exerts on body `a` (empty with one body).
+    /// ...`: the force body `b` exerts on body `a`, normal and tangential (empty with one
+    /// body).
     pub body_pair_forces: Vec<Vec3>,
 }
 
@@ -297,14 +300,20 @@ impl SurfaceContact {
         BarrierPotential::min_distance(&self.surface, &self.candidates(&x), &self.rest, &x)
     }
 
-    /// The pairs within `dhat`, the smallest distance and the meshed obstacles' forces at
-    /// body positions `x`.
-    pub fn summary(&self, x: &[Vec3]) -> SurfaceContactSummary {
+    /// The pairs within `dhat`, the smallest distance, the meshed obstacles' forces and the
+    /// forces between bodies at body positions `x`: the barrier's, plus the tangential
+    /// forces of `friction` (the surface friction at its latest lag) if given.
+    pub fn summary(&self, x: &[Vec3], friction: Option<&SurfaceFriction>) -> SurfaceContactSummary {
+        let mut pairs = self.barrier_pair_gradients(x);
+        if let Some(friction) = friction {
+            pairs.extend(friction.pair_gradients(x));
+        }
+        let (obstacle_forces, body_pair_forces) = self.forces_of(&pairs);
         SurfaceContactSummary {
             pairs_within_dhat: self.pairs_within_dhat(x),
             min_distance: self.min_distance(x),
-            obstacle_forces: self.obstacle_forces(x),
-            body_pair_forces: self.body_pair_forces(x),
+            obstacle_forces,
+            body_pair_forces,
         }
     }
 
@@ -316,55 +325,50 @@ impl SurfaceContact {
             .map_or(0, |b| b + 1)
     }
 
-    /// For each pair of bodies `(a, b)`, `a < b` (in the order of
-    /// [`SurfaceContactSummary::body_pair_forces`]), the force `b` exerts on `a` at body
-    /// positions `x`: minus the gradient of the pairs between them, summed over `a`'s nodes.
-    pub fn body_pair_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
-        let bodies = self.num_bodies();
-        if bodies < 2 {
-            return Vec::new();
-        }
+    /// The barrier's pairs within `dhat` at body positions `x` with their gradients.
+    fn barrier_pair_gradients(&self, x: &[Vec3]) -> Vec<([usize; 4], SVector<f64, 12>)> {
         let full = self.rigid.extend(x);
-        let all = self.candidates(&full);
-        let n = self.rigid.num_nodes();
-        let body = |v: usize| self.spec.node_bodies[v];
-        // The index of pair (a, b), a < b, in row-major upper-triangle order.
-        let index = |a: usize, b: usize| a * (2 * bodies - a - 1) / 2 + (b - a - 1);
-        let mut between = vec![Candidates::default(); bodies * (bodies - 1) / 2];
-        let (tris, edges) = (self.surface.triangles(), self.surface.edges());
-        for &[p, t] in &all.point_triangle {
-            let (a, b) = (body(p), body(tris[t][0]));
-            if p < n && tris[t][0] < n && a != b {
-                between[index(a.min(b), a.max(b))]
-                    .point_triangle
-                    .push([p, t]);
+        self.potential()
+            .pair_gradients(&self.surface, &self.candidates(&full), &self.rest, &full)
+    }
+
+    /// From pairs with the gradients of their potentials: the force each meshed obstacle
+    /// exerts on the bodies, and for each pair of bodies `(a, b)`, `a < b` (in the order of
+    /// [`SurfaceContactSummary::body_pair_forces`]; empty with one body), the force `b`
+    /// exerts on `a`. A pair's force on a body is minus its gradient summed over that
+    /// body's nodes (the lower-numbered of its two sides: bodies come before obstacles);
+    /// pairs within one body (self-contact) exert none between bodies.
+    fn forces_of(&self, pairs: &[([usize; 4], SVector<f64, 12>)]) -> (Vec<Vec3>, Vec<Vec3>) {
+        let bodies = self.num_bodies();
+        let mut obstacles = vec![Vec3::zeros(); self.rigid.obstacles().len()];
+        let mut between = vec![Vec3::zeros(); bodies * bodies.saturating_sub(1) / 2];
+        for (nodes, gradient) in pairs {
+            let body = |i: usize| self.spec.node_bodies[nodes[i]];
+            // Node 0 is on the pair's first side (a point or the first edge), node 3 on the other.
+            let (a, b) = (body(0).min(body(3)), body(0).max(body(3)));
+            if a == b {
+                continue;
+            }
+            let on_a: Vec3 = (0..4)
+                .filter(|&i| body(i) == a)
+                .map(|i| -Vec3::new(gradient[3 * i], gradient[3 * i + 1], gradient[3 * i + 2]))
+                .sum();
+            if b < bodies {
+                // The index of pair (a, b), a < b, in row-major upper-triangle order.
+                between[a * (2 * bodies - a - 1) / 2 + (b - a - 1)] += on_a;
+            } else {
+                obstacles[b - bodies] += on_a;
             }
         }
-        for &[i, j] in &all.edge_edge {
-            let (a, b) = (body(edges[i][0]), body(edges[j][0]));
-            if edges[i][0] < n && edges[j][0] < n && a != b {
-                between[index(a.min(b), a.max(b))].edge_edge.push([i, j]);
-            }
-        }
-        let potential = self.potential();
-        let mut pairs = Vec::with_capacity(between.len());
-        for a in 0..bodies {
-            for b in a + 1..bodies {
-                let candidates = &between[index(a, b)];
-                if candidates.is_empty() {
-                    pairs.push(Vec3::zeros());
-                    continue;
-                }
-                let mut g = vec![0.0; 3 * full.len()];
-                potential.add_gradient(&self.surface, candidates, &self.rest, &full, &mut g);
-                let on_a: Vec3 = (0..n)
-                    .filter(|&v| body(v) == a)
-                    .map(|v| -Vec3::new(g[3 * v], g[3 * v + 1], g[3 * v + 2]))
-                    .sum();
-                pairs.push(on_a);
-            }
-        }
-        pairs
+        (obstacles, between)
+    }
+
+    /// For each pair of bodies `(a, b)`, `a < b` (in the order of
+    /// [`SurfaceContactSummary::body_pair_forces`]), the force the barrier of `b` exerts on
+    /// `a` at body positions `x`: minus the gradient of the pairs between them, summed over
+    /// `a`'s nodes.
+    pub fn body_pair_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
+        self.forces_of(&self.barrier_pair_gradients(x)).1
     }
 
     /// The number of pairs closer than `dhat` at body positions `x`.
@@ -374,30 +378,11 @@ impl SurfaceContact {
             .count_within(&self.surface, &self.candidates(&x), &self.rest, &x)
     }
 
-    /// The force each meshed obstacle exerts on the bodies at body positions `x`: the
-    /// barrier's gradient summed over the obstacle's vertices (the bodies' nodes feel its
-    /// opposite, minus the gradient).
+    /// The force each meshed obstacle's barrier exerts on the bodies at body positions `x`:
+    /// minus the barrier's gradient of the pairs with the obstacle, summed over the bodies'
+    /// nodes.
     pub fn obstacle_forces(&self, x: &[Vec3]) -> Vec<Vec3> {
-        if self.rigid.is_empty() {
-            return Vec::new();
-        }
-        let full = self.rigid.extend(x);
-        let mut g = vec![0.0; 3 * full.len()];
-        self.potential().add_gradient(
-            &self.surface,
-            &self.candidates(&full),
-            &self.rest,
-            &full,
-            &mut g,
-        );
-        (0..self.rigid.obstacles().len())
-            .map(|k| {
-                self.rigid
-                    .range(k)
-                    .map(|i| Vec3::new(g[3 * i], g[3 * i + 1], g[3 * i + 2]))
-                    .sum()
-            })
-            .collect()
+        self.forces_of(&self.barrier_pair_gradients(x)).0
     }
 
     /// Which of a pair's nodes are degrees of freedom (the bodies').

@@ -22,6 +22,7 @@ use crate::error::SolverError;
 use crate::problem::friction::SurfaceFrictionSpec;
 use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
+use nalgebra::SVector;
 use std::sync::{RwLock, RwLockReadGuard};
 
 /// What the barrier hands friction at a lagged state
@@ -64,6 +65,15 @@ impl Lagged {
         PairRows {
             num_nodes: self.start.len(),
         }
+    }
+
+    /// The motion over the step of a pair's `nodes` at body positions `x`: a body node's
+    /// displacement from the step's start, an obstacle vertex's prescribed motion.
+    fn motion(&self, nodes: &[usize; 4], x: &[Vec3]) -> [Vec3; 4] {
+        nodes.map(|n| match n.checked_sub(self.start.len()) {
+            None => x[n] - self.start[n],
+            Some(vertex) => self.obstacle_motion[vertex],
+        })
     }
 }
 
@@ -130,6 +140,18 @@ impl SurfaceFriction {
     pub fn num_pairs(&self) -> usize {
         self.read().pairs.len()
     }
+
+    /// Every frozen pair with the gradient of its potential at body positions `x` on its
+    /// four nodes (12 coordinates, node-major; an obstacle vertex's entries are those of its
+    /// prescribed motion): minus it is the friction force on each node.
+    pub fn pair_gradients(&self, x: &[Vec3]) -> Vec<([usize; 4], SVector<f64, 12>)> {
+        let lagged = self.read();
+        lagged
+            .pairs
+            .iter()
+            .map(|(nodes, pair)| (*nodes, pair.derivatives(&lagged.motion(nodes, x)).gradient))
+            .collect()
+    }
 }
 
 impl EnergyTerm for SurfaceFriction {
@@ -161,11 +183,7 @@ impl EnergyTerm for SurfaceFriction {
         let mut energy = 0.0;
         let mut at = 0;
         for (nodes, pair) in &lagged.pairs {
-            let u = nodes.map(|n| match n.checked_sub(rows.num_nodes) {
-                None => x[n] - lagged.start[n],
-                Some(vertex) => lagged.obstacle_motion[vertex],
-            });
-            let d = pair.derivatives(&u);
+            let d = pair.derivatives(&lagged.motion(nodes, x));
             energy += d.value;
             if let Some(g) = gradient.as_deref_mut() {
                 rows.scatter(nodes, d.gradient.as_slice(), g);

@@ -108,6 +108,7 @@ pub(super) fn record(
         constraint_energy: energies.constraint,
         external_energy: energies.external,
         wall_time_s: report.wall_time.as_secs_f64(),
+        pattern_rebuilds: report.pattern_rebuilds,
         tracked_probe: None,
         contact: contact_record(report, surface, meshed),
         pressure_loads: Vec::new(),
