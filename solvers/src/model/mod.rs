@@ -90,6 +90,8 @@ pub struct Model {
     /// The membrane stiffness `mu h` of the cloth sheet each node belongs to (0 off the
     /// sheets), in place of the solid's for its contact penalty.
     sheet_stiffness: Vec<f64>,
+    /// The triangles of every cloth sheet, which join the boundary in surface contact.
+    sheet_triangles: Vec<[usize; 3]>,
 }
 
 /// Contact penalty relative to the vertex stiffness (see [`Model::set_contact_stiffness`]).
@@ -236,6 +238,10 @@ impl Model {
         let masses = with_sheets(mesh.lumped_masses(&density));
         let mut sheet_stiffness = vec![0.0; mesh.num_nodes()];
         let mut sheet_nodes = Vec::new();
+        let sheet_triangles = cloths
+            .iter()
+            .flat_map(|c| c.triangles.iter().copied())
+            .collect();
         for sheet in &sheets {
             let nodes = sheet.nodes();
             nodes
@@ -481,6 +487,7 @@ impl Model {
             curve_corners,
             mu,
             sheet_stiffness,
+            sheet_triangles,
             contact,
             surface_contact: None,
             surface_friction: None,
@@ -490,10 +497,14 @@ impl Model {
     }
 
     /// Turns barrier contact between the boundary surfaces on (every 6-node face as its four
-    /// 3-node triangles), its stiffness bounded for the shear stiffness `mu h` of a node's
-    /// cells (Li et al. 2020, supplement).
+    /// 3-node triangles) and the cloth sheets' triangles (two-sided: the distance is to the
+    /// triangle), its stiffness bounded for the shear stiffness `mu h` of a node's cells (Li
+    /// et al. 2020, supplement).
     pub fn set_surface_contact(&mut self, spec: SurfaceContactSpec) -> Result<(), SolverError> {
-        let surface = ContactSurface::from_element_surface(&self.mesh.boundary()?);
+        let boundary = ContactSurface::from_element_surface(&self.mesh.boundary()?);
+        let mut triangles = boundary.triangles().to_vec();
+        triangles.extend(&self.sheet_triangles);
+        let surface = ContactSurface::from_triangles(triangles);
         let corners = self.mesh.corners();
         let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
         let contact = SurfaceContact::new(spec, surface, self.mesh.nodes().to_vec(), self.mu * h)?;
