@@ -60,15 +60,15 @@ mod tests {
 
     #[test]
     fn band_lies_on_its_circle_with_outward_normals() {
-        let band = band(0.1, 0.05, 2).unwrap();
+        let surface = band(0.1, 0.05, 2).unwrap();
         let (vertices, triangles) = band_counts(0.1, 0.05, 2);
-        assert_eq!(band.vertices.len() as f64, vertices);
-        assert_eq!(band.triangles.len() as f64, triangles);
-        for p in &band.vertices {
+        assert_eq!(surface.vertices.len() as f64, vertices);
+        assert_eq!(surface.triangles.len() as f64, triangles);
+        for p in &surface.vertices {
             assert!((p.xy().norm() - 0.1).abs() < 1e-15);
         }
-        for t in &band.triangles {
-            let [a, b, c] = t.map(|v| band.vertices[v]);
+        for t in &surface.triangles {
+            let [a, b, c] = t.map(|v| surface.vertices[v]);
             let normal = (b - a).cross(&(c - a));
             let centroid = (a + b + c) / 3.0;
             assert!(
