@@ -129,6 +129,7 @@ pub use model::pressure_gauges::PressureReading;
 pub use model::regions::Regions;
 pub use nonlinear::report::{IterationReport, StepReport, Timings};
 pub use problem::builder::ProblemBuilder;
+pub use problem::cloth::ClothSheet;
 pub use problem::friction::{FrictionSpec, SurfaceFrictionSpec};
 pub use problem::loads::{Dirichlet, Load, Motion, ScheduledLoad};
 pub use problem::material::{Epidermis, Kappa, Material, ZonalEnergy};

@@ -41,6 +41,7 @@ pub fn beam(cells: [usize; 3], method: Method, nu: f64, size: Vec3) -> Problem {
         }],
         loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
         obstacles: Vec::new(),
+        cloths: Vec::new(),
     }
 }
 

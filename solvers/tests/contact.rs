@@ -112,6 +112,7 @@ fn resting_block_at(method: Method, nu: f64, z0: f64) -> Problem {
         }],
         loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
         obstacles: vec![ground(z0)],
+        cloths: Vec::new(),
     }
 }
 
@@ -232,6 +233,7 @@ fn receding_ground_releases_every_contact() {
         }],
         loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
         obstacles: vec![ground.clone()],
+        cloths: Vec::new(),
     };
     let steps = 4;
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
@@ -275,6 +277,7 @@ fn dropped_ball(res: usize, method: Method, mu: f64, nu: f64, gap: f64) -> Probl
         dirichlet: Vec::new(),
         loads: vec![Load::Gravity(Vec3::new(0.0, 0.0, -G)).into()],
         obstacles: vec![ground(0.0)],
+        cloths: Vec::new(),
     }
 }
 
@@ -378,6 +381,7 @@ fn incompressible_block_squeezed_between_moving_cylinders() {
         dirichlet,
         loads: Vec::new(),
         obstacles: obstacles.clone(),
+        cloths: Vec::new(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let summary = sim.run(Stepping::quasi_static(2), |_| {}).unwrap();
@@ -456,6 +460,7 @@ fn shrinking_ring_squeezes_a_cylinder_without_penetrating() {
         }],
         loads: Vec::new(),
         obstacles: vec![ring.clone()],
+        cloths: Vec::new(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let summary = sim.run(Stepping::quasi_static(4), |_| {}).unwrap();

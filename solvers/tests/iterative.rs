@@ -115,6 +115,7 @@ fn iterative_path_matches_direct_on_a_zonal_ball() {
         }],
         loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
         obstacles: Vec::new(),
+        cloths: Vec::new(),
     };
     let (d, krylov) = compare(problem, PreconditionerKind::IncompleteCholesky);
     eprintln!("zonal ball: difference {d:e}, {krylov} Krylov iterations");

@@ -56,6 +56,7 @@ fn patch_test_reproduces_the_analytic_uniaxial_neo_hookean_state() {
         regions: Vec::new(),
         zones: None,
         obstacles: Vec::new(),
+        cloths: Vec::new(),
     };
     let mut sim = Simulation::new(problem, Settings::default()).unwrap();
     let summary = sim.run(Stepping::quasi_static(3), |_| {}).unwrap();
@@ -273,6 +274,7 @@ fn von_mises_stress_of_an_isochoric_stretch() {
             dirichlet: vec![],
             loads: vec![],
             obstacles: vec![],
+            cloths: Vec::new(),
         };
         let sim = Simulation::new(problem, Settings::default()).unwrap();
         let mut state = sim.state().clone();

@@ -4,6 +4,7 @@
 
 mod assembled;
 mod cloth;
+mod cloth_sheets;
 mod common;
 mod constraints;
 mod contact_forces;

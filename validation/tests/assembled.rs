@@ -90,6 +90,7 @@ fn problem(deformed: &Deformed, method: Method, cavity: bool) -> Problem {
         loads,
         obstacles: Vec::new(),
         mesh: mesh.into(),
+        cloths: Vec::new(),
     }
 }
 

@@ -66,6 +66,7 @@ fn cantilever(method: Method) -> Problem {
         zones: None,
         obstacles: Vec::new(),
         mesh: mesh.into(),
+        cloths: Vec::new(),
     }
 }
 

@@ -116,6 +116,7 @@ fn patch(method: Method) -> Problem {
         zones: None,
         obstacles: Vec::new(),
         mesh: mesh.into(),
+        cloths: Vec::new(),
     }
 }
 
@@ -137,6 +138,7 @@ fn cantilever(method: Method) -> Problem {
         zones: None,
         obstacles: Vec::new(),
         mesh: mesh.into(),
+        cloths: Vec::new(),
     }
 }
 

@@ -54,6 +54,7 @@ fn problem(mesh: ElementMesh, method: Method, nu: f64, dirichlet: Vec<Dirichlet>
         dirichlet,
         loads: Vec::new(),
         obstacles: Vec::new(),
+        cloths: Vec::new(),
     }
 }
 

@@ -59,6 +59,7 @@ fn stretched_bar(stretch: f64, quadratic: bool) -> Problem {
         dirichlet,
         loads: Vec::new(),
         obstacles: Vec::new(),
+        cloths: Vec::new(),
     }
 }
 

@@ -14,6 +14,7 @@
 //! | [`box_grid`] `[nx, ny, nz]` | `6 nx ny nz` | 0.27 (cubic cells) |
 //! | [`cylinder`] / [`puck`] `res` | `24 res^2 layers` (res 4, height = 2 radius: 3072) | 0.20 at res 4 |
 //! | [`tube`] `res` | `6 res n_theta n_z`, cells about `(r_o - r_i) / res` wide (radii 0.8 and 1, height 0.5: res 2: 3420, res 4: 27120) | 0.26 at res 2 |
+//! | [`band`] `res` | a triangle surface, not tets: `2 res n_theta` triangles (cloth) | |
 //! | [`ball`] `res` | `48 res^3` (res 4: 3072, res 8: 24576) | 0.19 at res 4 |
 //! | [`hemisphere`] `res`, `grading` | `24 res^3` (the lower half of the ball, graded towards its pole) | 0.19 at res 4, grading 1 |
 //! | [`spine_arm`] `res` | `1260 res^3` (a bar with five through-holes) | 0.27 |
@@ -35,6 +36,7 @@
 //! rings) stay straight. Rims are edges of both a wall and a cap, and so follow the wall.
 
 mod ball;
+mod band;
 mod bubble;
 mod carved;
 mod creature;
@@ -49,6 +51,7 @@ mod torso;
 mod tube;
 
 pub use ball::{ball, ball_counts, ball_surface, hemisphere, hemisphere_counts};
+pub use band::{band, band_counts};
 pub use bubble::{bubble, bubble_counts, BUBBLE_SIZE};
 pub use creature::{creature, creature_counts, CREATURE_SIZE};
 pub use cushion::{cushion, cushion_counts, CUSHION_SIZE};

@@ -125,6 +125,7 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         dirichlet,
         loads,
         obstacles,
+        cloths: Vec::new(),
     };
     let named: Vec<(&str, &Part)> = bodies
         .names

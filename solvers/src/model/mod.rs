@@ -11,8 +11,8 @@ use crate::problem::method::Method;
 use crate::problem::schedule::LoadLevel;
 use crate::problem::Problem;
 use crate::terms::{
-    AugmentedConstraints, Contact, DeadLoad, Elastic, EnclosedVolume, EnergyTerm, EpidermisTerm,
-    Faces, FollowerPressure,
+    AugmentedConstraints, Cloth, Contact, DeadLoad, Elastic, EnclosedVolume, EnergyTerm,
+    EpidermisTerm, Faces, FollowerPressure,
 };
 use crate::terms::{SurfaceContact, SurfaceContactSpec, SurfaceFriction};
 use isochor_constraints::{
@@ -87,6 +87,11 @@ pub struct Model {
     /// stops at, so that no corner of a load path is stepped over.
     pub curve_corners: Vec<f64>,
     mu: f64,
+    /// The membrane stiffness `mu h` of the cloth sheet each node belongs to (0 off the
+    /// sheets), in place of the solid's for its contact penalty.
+    sheet_stiffness: Vec<f64>,
+    /// The triangles of every cloth sheet, which join the boundary in surface contact.
+    sheet_triangles: Vec<[usize; 3]>,
 }
 
 /// Contact penalty relative to the vertex stiffness (see [`Model::set_contact_stiffness`]).
@@ -195,6 +200,7 @@ impl Model {
             dirichlet,
             loads,
             obstacles,
+            cloths,
         } = problem;
         let regions = Regions::new(&mesh, material.clone(), regions, |m| {
             elastic_density(method, m)
@@ -209,7 +215,40 @@ impl Model {
             .collect();
         let dofs = Dofs::new(mesh.num_nodes(), &dirichlet)?;
         let density = regions.per_element(|m| m.density);
-        let masses = mesh.lumped_masses(&density);
+        let sheets = cloths
+            .iter()
+            .map(|c| {
+                Cloth::new(mesh.nodes(), c.triangles.clone(), c.fabric, c.rest_scale).map_err(|e| {
+                    SolverError::InvalidProblem(format!("cloth '{}': {}", c.name, message(e)))
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        // The sheets' lumped masses join the bodies' in the inertia and in gravity.
+        let mut sheet_masses = vec![0.0; mesh.num_nodes()];
+        for (sheet, spec) in sheets.iter().zip(&cloths) {
+            sheet.add_lumped_masses(spec.density, &mut sheet_masses);
+        }
+        let with_sheets = |masses: Vec<f64>| -> Vec<f64> {
+            masses
+                .iter()
+                .zip(&sheet_masses)
+                .map(|(m, s)| m + s)
+                .collect()
+        };
+        let masses = with_sheets(mesh.lumped_masses(&density));
+        let mut sheet_stiffness = vec![0.0; mesh.num_nodes()];
+        let mut sheet_nodes = Vec::new();
+        let sheet_triangles = cloths
+            .iter()
+            .flat_map(|c| c.triangles.iter().copied())
+            .collect();
+        for sheet in &sheets {
+            let nodes = sheet.nodes();
+            nodes
+                .iter()
+                .for_each(|&v| sheet_stiffness[v] = sheet.membrane_stiffness());
+            sheet_nodes.extend(nodes);
+        }
         let mu = regions.mean_shear_modulus(&mesh);
         let most_incompressible = regions.most_incompressible();
         let unsupported = |reason| SolverError::Unsupported {
@@ -330,12 +369,15 @@ impl Model {
             )?;
             terms.push(Box::new(EpidermisTerm::new(&mesh, skin)?));
         }
+        for sheet in sheets {
+            terms.push(Box::new(sheet));
+        }
         let mut cavities = Vec::new();
         let mut pressure_gauges = Vec::new();
         for (l, ScheduledLoad { load, curve }) in loads.into_iter().enumerate() {
             terms.push(match load {
                 Load::Gravity(g) => {
-                    let weights = mesh.node_masses(&density);
+                    let weights = with_sheets(mesh.node_masses(&density));
                     Box::new(DeadLoad::gravity(&weights, g).following(curve))
                 }
                 Load::Traction { faces, traction } => Box::new(
@@ -422,7 +464,8 @@ impl Model {
         }
         let contact = (!obstacles.is_empty())
             .then(|| -> Result<Contact, SolverError> {
-                let nodes = mesh.boundary()?.nodes();
+                let mut nodes = mesh.boundary()?.nodes();
+                nodes.extend(&sheet_nodes);
                 Ok(Contact::new(nodes, obstacles, Vec::new()))
             })
             .transpose()?;
@@ -443,6 +486,8 @@ impl Model {
             masses,
             curve_corners,
             mu,
+            sheet_stiffness,
+            sheet_triangles,
             contact,
             surface_contact: None,
             surface_friction: None,
@@ -452,10 +497,14 @@ impl Model {
     }
 
     /// Turns barrier contact between the boundary surfaces on (every 6-node face as its four
-    /// 3-node triangles), its stiffness bounded for the shear stiffness `mu h` of a node's
-    /// cells (Li et al. 2020, supplement).
+    /// 3-node triangles) and the cloth sheets' triangles (two-sided: the distance is to the
+    /// triangle), its stiffness bounded for the shear stiffness `mu h` of a node's cells (Li
+    /// et al. 2020, supplement).
     pub fn set_surface_contact(&mut self, spec: SurfaceContactSpec) -> Result<(), SolverError> {
-        let surface = ContactSurface::from_element_surface(&self.mesh.boundary()?);
+        let boundary = ContactSurface::from_element_surface(&self.mesh.boundary()?);
+        let mut triangles = boundary.triangles().to_vec();
+        triangles.extend(&self.sheet_triangles);
+        let surface = ContactSurface::from_triangles(triangles);
         let corners = self.mesh.corners();
         let h = (6.0 * corners.rest_volume() / corners.num_tets().max(1) as f64).cbrt();
         let contact = SurfaceContact::new(spec, surface, self.mesh.nodes().to_vec(), self.mu * h)?;
@@ -517,6 +566,8 @@ impl Model {
                 .iter()
                 .map(|&v| {
                     let inertia = dt.map_or(0.0, |dt| self.masses[v] / (dt * dt));
+                    let sheet = self.sheet_stiffness[v];
+                    let elastic = if sheet > 0.0 { sheet } else { elastic };
                     CONTACT_PENALTY * (elastic + inertia)
                 })
                 .collect();

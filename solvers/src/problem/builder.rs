@@ -1,6 +1,7 @@
 //! [`ProblemBuilder`]: a [`Problem`] stated call by call, with defaults for what most
 //! problems share, checked when built.
 
+use super::cloth::ClothSheet;
 use super::loads::{Dirichlet, Load, Motion, ScheduledLoad};
 use super::material::Material;
 use super::method::Method;
@@ -60,6 +61,7 @@ pub struct ProblemBuilder {
     dirichlet: Vec<Dirichlet>,
     loads: Vec<ScheduledLoad>,
     obstacles: Vec<Obstacle>,
+    cloths: Vec<ClothSheet>,
 }
 
 impl Problem {
@@ -81,6 +83,7 @@ impl ProblemBuilder {
             dirichlet: Vec::new(),
             loads: Vec::new(),
             obstacles: Vec::new(),
+            cloths: Vec::new(),
         }
     }
 
@@ -194,6 +197,12 @@ impl ProblemBuilder {
         self
     }
 
+    /// Adds a sheet of cloth over mesh vertices that no tet uses.
+    pub fn cloth(mut self, sheet: ClothSheet) -> Self {
+        self.cloths.push(sheet);
+        self
+    }
+
     /// The problem, checked by [`Problem::validate`].
     pub fn build(self) -> Result<Problem, SolverError> {
         let problem = self.into_problem();
@@ -212,6 +221,7 @@ impl ProblemBuilder {
             dirichlet,
             loads,
             obstacles,
+            cloths,
         } = self;
         Problem {
             mesh,
@@ -222,6 +232,7 @@ impl ProblemBuilder {
             dirichlet,
             loads,
             obstacles,
+            cloths,
         }
     }
 }

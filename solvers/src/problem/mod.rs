@@ -3,6 +3,7 @@
 //! names.
 
 pub mod builder;
+pub mod cloth;
 pub mod friction;
 pub mod loads;
 pub mod material;
@@ -14,6 +15,7 @@ pub mod schedule;
 mod supports;
 mod validate;
 
+use cloth::ClothSheet;
 use isochor_mesh::{ElementMesh, Zones};
 use loads::{Dirichlet, ScheduledLoad};
 use material::Material;
@@ -59,4 +61,6 @@ pub struct Problem {
     pub loads: Vec<ScheduledLoad>,
     /// Rigid obstacles the surface nodes may not enter (frictionless contact).
     pub obstacles: Vec<Obstacle>,
+    /// Sheets of cloth over mesh vertices that no tet uses.
+    pub cloths: Vec<ClothSheet>,
 }

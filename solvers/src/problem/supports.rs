@@ -181,6 +181,7 @@ mod tests {
             dirichlet: Vec::new(),
             loads: Vec::new(),
             obstacles: Vec::new(),
+            cloths: Vec::new(),
         };
         assert_eq!(problem.unremoved_rigid_modes(), 6);
         problem.obstacles.push(Obstacle::fixed(Shape::HalfSpace {

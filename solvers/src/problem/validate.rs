@@ -80,6 +80,16 @@ impl Problem {
                 other => other,
             })?;
         }
+        let mut in_tets = vec![false; vertices];
+        self.mesh
+            .corners()
+            .tets()
+            .iter()
+            .flatten()
+            .for_each(|&v| in_tets[v] = true);
+        for sheet in &self.cloths {
+            sheet.validate(&in_tets)?;
+        }
         Ok(())
     }
 }

@@ -79,6 +79,32 @@ impl Cloth {
     pub fn num_hinges(&self) -> usize {
         self.hinges.len()
     }
+
+    /// Adds the sheet's lumped masses to `masses` (one per node of the problem): each
+    /// triangle's `density h A_0 / 3` to each of its corners, `A_0` its rest area (the
+    /// placed one times `rest_scale^2`).
+    pub fn add_lumped_masses(&self, density: f64, masses: &mut [f64]) {
+        let areal = density * self.fabric.thickness();
+        for (nodes, rest) in self.triangles.iter().zip(&self.rest_triangles) {
+            nodes
+                .iter()
+                .for_each(|&v| masses[v] += areal * rest.area() / 3.0);
+        }
+    }
+
+    /// The fabric's membrane shear stiffness per node, `mu h` (N/m): the stiffness a node of
+    /// the sheet opposes to a push, beside a solid's `mu h` of its cells.
+    pub fn membrane_stiffness(&self) -> f64 {
+        self.fabric.mu() * self.fabric.thickness()
+    }
+
+    /// The sheet's nodes, each once, in increasing order.
+    pub fn nodes(&self) -> Vec<usize> {
+        let mut nodes: Vec<usize> = self.triangles.iter().flatten().copied().collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
 }
 
 impl Cloth {
