@@ -92,19 +92,7 @@ fn flat_sheet() -> TriangleSurface {
         .flat_map(|j| (0..=nx).map(move |i| Vec3::new(i as f64 * h, j as f64 * h, 0.0)))
         .collect();
     let index = |i: usize, j: usize| j * (nx + 1) + i;
-    let triangles = (0..ny)
-        .flat_map(|j| {
-            (0..nx).flat_map(move |i| {
-                let [a, b, c, d] = [
-                    index(i, j),
-                    index(i + 1, j),
-                    index(i + 1, j + 1),
-                    index(i, j + 1),
-                ];
-                [[a, b, c], [a, c, d]]
-            })
-        })
-        .collect();
+    let triangles = generate::split_quads(nx, ny, index);
     TriangleSurface {
         vertices,
         triangles,

@@ -17,7 +17,6 @@ use super::mesh_obstacle_friction::plate_file;
 use isochor_mesh::Vec3;
 use isochor_scenes::resolve;
 use isochor_scenes::Scene;
-use isochor_solvers::Simulation;
 
 /// How far the lagged friction forces may move and still count as settled.
 const FRICTION_SETTLED: f64 = 1e-2;
@@ -95,19 +94,10 @@ fn balances(ground: Ground, scene: &Scene, dt: f64) -> Vec<Balance> {
     let resolved = resolve::build(scene).unwrap();
     let mesh = resolved.problem.mesh.clone();
     let masses = mesh.lumped_masses(&vec![1000.0; mesh.num_elements()]);
-    let mut sim = Simulation::new(resolved.problem, resolved.settings).unwrap();
-    if let Some(spec) = resolved.surface_contact {
-        sim.set_surface_contact(spec).unwrap();
-    }
-    if !resolved.mesh_obstacles.is_empty() {
-        sim.set_mesh_obstacles(resolved.mesh_obstacles).unwrap();
-    }
-    if let Some(spec) = resolved.friction {
-        sim.set_friction(spec).unwrap();
-    }
+    let (mut sim, stepping) = crate::incline::simulation(resolved);
     let mut velocities = vec![Vec3::zeros(); masses.len()];
     let mut steps = Vec::new();
-    sim.run(resolved.stepping, |frame| {
+    sim.run(stepping, |frame| {
         let force = match ground {
             Ground::HalfSpace => frame.report.contact.obstacle_forces[0],
             Ground::MeshedPlate => frame.surface_contact.as_ref().unwrap().obstacle_forces[0],

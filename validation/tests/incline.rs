@@ -19,16 +19,9 @@ use isochor_solvers::{Simulation, Stepping};
 /// The gravity's magnitude (m/s^2).
 pub const G: f64 = 9.81;
 
-/// The centroid's x at every frame `(t, x)` (the rest state first) and the lags of the
-/// friction's normal forces per step; asserts that no accepted state has two triangles of the
-/// bodies' surfaces and the meshed obstacles' intersect.
-pub fn slide(resolved: ResolvedScene, nodes: Option<Vec<usize>>) -> (Vec<(f64, f64)>, Vec<usize>) {
-    let nodes = nodes.unwrap_or_else(|| (0..resolved.problem.mesh.num_nodes()).collect());
-    let centroid = |x: &[Vec3]| nodes.iter().map(|&n| x[n].x).sum::<f64>() / nodes.len() as f64;
-    let mut path = vec![(0.0, centroid(resolved.problem.mesh.nodes()))];
-    let mut lags = Vec::new();
-    let surface = surface_with_obstacles(&resolved);
-    let stepping: Stepping = resolved.stepping;
+/// The simulation of `resolved` with its barrier contact, meshed obstacles and friction
+/// attached, and its stepping.
+pub fn simulation(resolved: ResolvedScene) -> (Simulation, Stepping) {
     let mut sim = Simulation::new(resolved.problem, resolved.settings).unwrap();
     if let Some(spec) = resolved.surface_contact {
         sim.set_surface_contact(spec).unwrap();
@@ -39,6 +32,19 @@ pub fn slide(resolved: ResolvedScene, nodes: Option<Vec<usize>>) -> (Vec<(f64, f
     if let Some(spec) = resolved.friction {
         sim.set_friction(spec).unwrap();
     }
+    (sim, resolved.stepping)
+}
+
+/// The centroid's x at every frame `(t, x)` (the rest state first) and the lags of the
+/// friction's normal forces per step; asserts that no accepted state has two triangles of the
+/// bodies' surfaces and the meshed obstacles' intersect.
+pub fn slide(resolved: ResolvedScene, nodes: Option<Vec<usize>>) -> (Vec<(f64, f64)>, Vec<usize>) {
+    let nodes = nodes.unwrap_or_else(|| (0..resolved.problem.mesh.num_nodes()).collect());
+    let centroid = |x: &[Vec3]| nodes.iter().map(|&n| x[n].x).sum::<f64>() / nodes.len() as f64;
+    let mut path = vec![(0.0, centroid(resolved.problem.mesh.nodes()))];
+    let mut lags = Vec::new();
+    let surface = surface_with_obstacles(&resolved);
+    let (mut sim, stepping) = simulation(resolved);
     sim.run(stepping, |frame| {
         path.push((frame.state.t, centroid(&frame.state.positions)));
         lags.push(frame.report.friction_lags);

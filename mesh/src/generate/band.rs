@@ -1,7 +1,7 @@
 //! A band: an open cylindrical triangle surface about the z axis (a cloth waistband or
 //! sleeve), a structured `(theta, z)` grid periodic in theta.
 
-use super::{cells_along, positive, resolution};
+use super::{cells_along, positive, resolution, split_quads};
 use crate::io::TriangleSurface;
 use crate::{MeshError, Vec3};
 use std::f64::consts::PI;
@@ -29,19 +29,7 @@ pub fn band(radius: f64, width: f64, res: usize) -> Result<TriangleSurface, Mesh
         })
         .collect();
     let index = |i: usize, j: usize| j * around + i % around;
-    let triangles = (0..res)
-        .flat_map(|j| {
-            (0..around).flat_map(move |i| {
-                let [a, b, c, d] = [
-                    index(i, j),
-                    index(i + 1, j),
-                    index(i + 1, j + 1),
-                    index(i, j + 1),
-                ];
-                [[a, b, c], [a, c, d]]
-            })
-        })
-        .collect();
+    let triangles = split_quads(around, res, index);
     Ok(TriangleSurface {
         vertices,
         triangles,

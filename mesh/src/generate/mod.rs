@@ -128,6 +128,29 @@ fn resolution(res: usize, max: usize) -> Result<usize, MeshError> {
     }
 }
 
+/// The two triangles `[a, b, c]`, `[a, c, d]` of every quad of a `columns x rows` grid whose
+/// corner `(i, j)` is `corner(i, j)` (quad `(i, j)` has corners `(i, j)`, `(i + 1, j)`,
+/// `(i + 1, j + 1)`, `(i, j + 1)`; a periodic grid wraps `i` in `corner`). The corners are
+/// vertex indices for a surface mesh or points for a drawn shape.
+pub fn split_quads<T: Copy>(
+    columns: usize,
+    rows: usize,
+    corner: impl Fn(usize, usize) -> T,
+) -> Vec<[T; 3]> {
+    (0..rows)
+        .flat_map(|j| (0..columns).map(move |i| (i, j)))
+        .flat_map(|(i, j)| {
+            let [a, b, c, d] = [
+                corner(i, j),
+                corner(i + 1, j),
+                corner(i + 1, j + 1),
+                corner(i, j + 1),
+            ];
+            [[a, b, c], [a, c, d]]
+        })
+        .collect()
+}
+
 /// Cells of size about `cell` along a length `length`: at least one, at most `max`.
 fn cells_along(name: &'static str, length: f64, cell: f64, max: usize) -> Result<usize, MeshError> {
     let n = (length / cell).round().max(1.0);

@@ -2,7 +2,7 @@
 //! tessellated coarsely, the unbounded ones (half-space, cylinder) cut to a patch around the
 //! bodies.
 
-use isochor_mesh::Vec3;
+use isochor_mesh::{generate::split_quads, Vec3};
 use isochor_solvers::{Obstacle, Shape};
 use std::f64::consts::TAU;
 
@@ -92,18 +92,7 @@ fn torus_like(centre: Vec3, axis: Vec3, big: f64, tube: f64, sphere: bool) -> Ve
         let radial = phi.cos() * u + phi.sin() * v;
         centre + (big + tube * theta.cos()) * radial + tube * theta.sin() * axis
     };
-    (0..AROUND)
-        .flat_map(|i| (0..rings).map(move |j| (i, j)))
-        .flat_map(|(i, j)| {
-            let (a, b, c, d) = (
-                point(i, j),
-                point(i + 1, j),
-                point(i + 1, j + 1),
-                point(i, j + 1),
-            );
-            [[a, b, c], [a, c, d]]
-        })
-        .collect()
+    split_quads(AROUND, rings, point)
 }
 
 #[cfg(test)]
