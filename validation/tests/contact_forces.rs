@@ -13,7 +13,7 @@
 //! computed with them matches the solve's to that fraction of the friction force.
 
 use super::incline::G;
-use super::mesh_obstacle_friction::plate_file;
+use super::mesh_obstacle_friction::{block_scene, plate_file, DHAT, DT};
 use isochor_mesh::Vec3;
 use isochor_scenes::resolve;
 use isochor_scenes::Scene;
@@ -22,8 +22,6 @@ use isochor_scenes::Scene;
 const FRICTION_SETTLED: f64 = 1e-2;
 /// The block's mass (kg): 1000 kg/m^3 times 4e-6 m^3 (its lumped masses add up to it).
 const MASS: f64 = 4e-3;
-/// The barrier's reach over the meshed plate (m); the block starts half of it above.
-const DHAT: f64 = 1e-4;
 
 /// The ground the block stands on.
 #[derive(Clone, Copy, Debug)]
@@ -32,52 +30,29 @@ enum Ground {
     MeshedPlate,
 }
 
-/// The block on `ground` at slope `theta` (degrees) with friction `mu`, under `stepping`
-/// (a `[stepping]` table).
-fn block(ground: Ground, theta: f64, mu: f64, stepping: &str) -> Scene {
-    let t = theta.to_radians();
-    let (bottom, obstacle) = match ground {
-        Ground::HalfSpace => (0.0, "shape = \"half-space\"".to_string()),
-        Ground::MeshedPlate => (
-            DHAT / 2.0,
-            format!("shape = \"mesh\"\npath = '{}'", plate_file()),
+/// The block on `ground` at slope `theta` (degrees) with friction `mu`, over `frames` implicit
+/// Euler steps of [`DT`].
+fn block(ground: Ground, theta: f64, mu: f64, frames: usize) -> Scene {
+    let friction = format!("friction = {mu}");
+    match ground {
+        Ground::HalfSpace => block_scene(
+            theta,
+            "[[obstacles]]\nshape = \"half-space\"\n",
+            0.0,
+            &friction,
+            frames,
         ),
-    };
-    let text = format!(
-        r#"name = "block-on-the-incline"
-method = "standard"
-
-[mesh]
-generator = "box"
-min = [0.0, 0.0, {bottom}]
-max = [0.02, 0.02, {top}]
-cells = [2, 2, 1]
-res = 1
-
-[material]
-young = 1e6
-nu = 0.3
-rho = 1000.0
-
-[loads]
-gravity = [{gx}, 0.0, {gz}]
-
-[[obstacles]]
-{obstacle}
-
-[contact]
-dhat = {DHAT}
-self = false
-friction = {mu}
-
-[stepping]
-{stepping}
-"#,
-        top = bottom + 0.01,
-        gx = G * t.sin(),
-        gz = -G * t.cos(),
-    );
-    Scene::from_toml_str(&text, "block-on-the-incline").unwrap()
+        Ground::MeshedPlate => block_scene(
+            theta,
+            &format!(
+                "[[obstacles]]\nshape = \"mesh\"\npath = '{}'\n",
+                plate_file()
+            ),
+            DHAT / 2.0,
+            &friction,
+            frames,
+        ),
+    }
 }
 
 /// What a step of the block shows: the force the ground exerts on it, the rate of change of
@@ -89,8 +64,8 @@ struct Balance {
     residual: f64,
 }
 
-/// The [`Balance`] of every accepted step of `scene` (implicit Euler with step `dt`).
-fn balances(ground: Ground, scene: &Scene, dt: f64) -> Vec<Balance> {
+/// The [`Balance`] of every accepted step of `scene` (implicit Euler with step [`DT`]).
+fn balances(ground: Ground, scene: &Scene) -> Vec<Balance> {
     let resolved = resolve::build(scene).unwrap();
     let mesh = resolved.problem.mesh.clone();
     let masses = mesh.lumped_masses(&vec![1000.0; mesh.num_elements()]);
@@ -104,7 +79,7 @@ fn balances(ground: Ground, scene: &Scene, dt: f64) -> Vec<Balance> {
         };
         let v = &frame.state.velocities;
         let momentum_rate = (0..masses.len())
-            .map(|i| (v[i] - velocities[i]) * (masses[i] / dt))
+            .map(|i| (v[i] - velocities[i]) * (masses[i] / DT))
             .sum();
         velocities.clone_from(v);
         steps.push(Balance {
@@ -122,15 +97,9 @@ fn balances(ground: Ground, scene: &Scene, dt: f64) -> Vec<Balance> {
 fn the_contact_force_on_a_sticking_block_balances_its_weight() {
     let t = 30.0f64.to_radians();
     let weight = Vec3::new(G * t.sin(), 0.0, -G * t.cos()) * MASS;
-    let dt = 0.005;
     for ground in [Ground::HalfSpace, Ground::MeshedPlate] {
-        let scene = block(
-            ground,
-            30.0,
-            0.7,
-            &format!("mode = \"dynamic\"\ndt = {dt}\nframes = 6"),
-        );
-        for (step, b) in balances(ground, &scene, dt).iter().enumerate() {
+        let scene = block(ground, 30.0, 0.7, 6);
+        for (step, b) in balances(ground, &scene).iter().enumerate() {
             let tangential = b.force.xy().norm();
             let bound = (b.nodes as f64).sqrt() * b.residual + FRICTION_SETTLED * tangential;
             let imbalance = (b.force + weight - b.momentum_rate).norm();
@@ -157,13 +126,8 @@ fn the_contact_force_on_a_sticking_block_balances_its_weight() {
 fn the_tangential_force_on_a_sliding_block_is_mu_times_the_normal_one() {
     let mu = 0.3;
     for ground in [Ground::HalfSpace, Ground::MeshedPlate] {
-        let scene = block(
-            ground,
-            30.0,
-            mu,
-            "mode = \"dynamic\"\ndt = 0.005\nframes = 6",
-        );
-        let force = balances(ground, &scene, 0.005).last().unwrap().force;
+        let scene = block(ground, 30.0, mu, 6);
+        let force = balances(ground, &scene).last().unwrap().force;
         let ratio = force.xy().norm() / force.z;
         eprintln!("{ground:?}: force {force:?}, tangential over normal {ratio:.5} against {mu}");
         assert!(

@@ -12,9 +12,9 @@ use isochor_scenes::resolve::{self, ResolvedScene};
 use isochor_scenes::Scene;
 
 /// The barrier's reach (m); the block starts half of it above the plate.
-const DHAT: f64 = 1e-4;
+pub const DHAT: f64 = 1e-4;
 /// The time step (s) and the number of steps.
-const DT: f64 = 0.005;
+pub const DT: f64 = 0.005;
 const STEPS: usize = 20;
 
 /// The OBJ square `[-0.05, 0.1] x [-0.05, 0.07]` at `z = 0` in a scratch folder.
@@ -42,21 +42,33 @@ fn block_on_meshed_plate(theta: f64, mu: f64, translate: [f64; 3]) -> ResolvedSc
 }
 
 /// The scene of [`block_on_meshed_plate`] with the `[[obstacles]]` tables `before` ahead of
-/// the plate's and the `[contact]` friction keys `friction`.
+/// the plate's and the `[contact]` friction keys `friction`, over [`STEPS`] steps.
 fn block_on_meshed_plate_scene(
     theta: f64,
     before: &str,
     friction: &str,
     translate: [f64; 3],
 ) -> Scene {
+    let [x, y, z] = translate;
+    let ground = format!(
+        "{before}[[obstacles]]\nshape = \"mesh\"\npath = '{}'\ntranslate = [{x}, {y}, {z}]\n",
+        plate_file()
+    );
+    block_scene(theta, &ground, DHAT / 2.0, friction, STEPS)
+}
+
+/// The block of the built-in incline with its bottom at `z = bottom` over the `[[obstacles]]`
+/// tables `ground`, under gravity tilted by `theta` (degrees), with `dhat` = [`DHAT`], the
+/// `[contact]` friction keys `friction`, and `frames` implicit Euler steps of [`DT`].
+pub fn block_scene(theta: f64, ground: &str, bottom: f64, friction: &str, frames: usize) -> Scene {
     let t = theta.to_radians();
     let text = format!(
-        r#"name = "block-on-a-meshed-plate"
+        r#"name = "block-on-the-incline"
 method = "standard"
 
 [mesh]
 generator = "box"
-min = [0.0, 0.0, {gap}]
+min = [0.0, 0.0, {bottom}]
 max = [0.02, 0.02, {top}]
 cells = [2, 2, 1]
 res = 1
@@ -69,12 +81,7 @@ rho = 1000.0
 [loads]
 gravity = [{gx}, 0.0, {gz}]
 
-{before}
-[[obstacles]]
-shape = "mesh"
-path = '{plate}'
-translate = [{}, {}, {}]
-
+{ground}
 [contact]
 dhat = {DHAT}
 self = false
@@ -83,18 +90,13 @@ self = false
 [stepping]
 mode = "dynamic"
 dt = {DT}
-frames = {STEPS}
+frames = {frames}
 "#,
-        translate[0],
-        translate[1],
-        translate[2],
-        gap = DHAT / 2.0,
-        top = DHAT / 2.0 + 0.01,
+        top = bottom + 0.01,
         gx = G * t.sin(),
         gz = -G * t.cos(),
-        plate = plate_file(),
     );
-    Scene::from_toml_str(&text, "block-on-a-meshed-plate").unwrap()
+    Scene::from_toml_str(&text, "block-on-the-incline").unwrap()
 }
 
 #[test]
