@@ -164,19 +164,17 @@ impl BarrierPotential {
 
     /// Every candidate pair within `dhat` at `x` with the gradient of its potential on its
     /// four nodes (12 coordinates, node-major).
-    pub fn pair_gradients(
-        &self,
-        surface: &ContactSurface,
-        candidates: &Candidates,
-        rest: &[Vec3],
-        x: &[Vec3],
-    ) -> Vec<([usize; 4], SVector<f64, 12>)> {
-        pairs(surface, candidates, rest)
-            .filter_map(|pair| {
-                let local = self.local(&pair, &pair.nodes.map(|n| x[n]))?;
-                Some((pair.nodes, local.gradient))
-            })
-            .collect()
+    pub fn pair_gradients<'a>(
+        &'a self,
+        surface: &'a ContactSurface,
+        candidates: &'a Candidates,
+        rest: &'a [Vec3],
+        x: &'a [Vec3],
+    ) -> impl Iterator<Item = ([usize; 4], SVector<f64, 12>)> + 'a {
+        pairs(surface, candidates, rest).filter_map(move |pair| {
+            let local = self.local(&pair, &pair.nodes.map(|n| x[n]))?;
+            Some((pair.nodes, local.gradient))
+        })
     }
 
     /// The four nodes of every candidate pair, in the order of [`Self::hessian_blocks`].

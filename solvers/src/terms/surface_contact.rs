@@ -330,6 +330,7 @@ impl SurfaceContact {
         let full = self.rigid.extend(x);
         self.potential()
             .pair_gradients(&self.surface, &self.candidates(&full), &self.rest, &full)
+            .collect()
     }
 
     /// From pairs with the gradients of their potentials: the force each meshed obstacle
