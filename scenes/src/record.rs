@@ -76,6 +76,47 @@ pub struct PressureLoadRecord {
     pub volume_ratio: f64,
 }
 
+/// Where a run's time went, in seconds, summed over every attempt (cut ones included).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct RunTimings {
+    /// Resolving the scene and building its model (meshes generated or read, promoted to
+    /// 10 nodes, selections, zones, the terms), before the first step; not part of
+    /// `wall_time_s`.
+    pub model_s: f64,
+    /// Sparsity patterns and symbolic factorizations: at the first step, and again where
+    /// contact pairs change the pattern.
+    pub setup_s: f64,
+    /// Element evaluation and sparse assembly of the Newton systems.
+    pub assembly_s: f64,
+    /// Numeric factorizations (and preconditioner set-ups on the iterative path).
+    pub factorization_s: f64,
+    /// Triangular and iterative solves.
+    pub solve_s: f64,
+    /// Line searches: collision detection, trial states' checks and evaluations.
+    pub line_search_s: f64,
+    /// Numeric factorizations of the direct linear solvers.
+    pub factorizations: usize,
+}
+
+impl RunTimings {
+    /// The timings of the solver's `reports` after a model built in `model_s` seconds.
+    pub fn of(model_s: f64, reports: &[isochor_solvers::StepReport]) -> Self {
+        let mut t = isochor_solvers::Timings::default();
+        for r in reports {
+            t += r.timings;
+        }
+        RunTimings {
+            model_s,
+            setup_s: t.setup.as_secs_f64(),
+            assembly_s: t.assembly.as_secs_f64(),
+            factorization_s: t.factorization.as_secs_f64(),
+            solve_s: t.solve.as_secs_f64(),
+            line_search_s: t.line_search.as_secs_f64(),
+            factorizations: reports.iter().map(|r| r.factorizations).sum(),
+        }
+    }
+}
+
 /// An attempted step that failed and was cut.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CutRecord {
@@ -155,6 +196,8 @@ pub struct RunResult {
     pub converged: bool,
     /// Wall time of the run in seconds.
     pub wall_time_s: f64,
+    /// Where the time went.
+    pub timings: RunTimings,
     /// Whole-body deformed/rest volume minus one, in the last accepted state.
     pub volume_change: f64,
     /// Named probe results on the last accepted state.

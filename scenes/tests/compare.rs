@@ -32,6 +32,7 @@ fn result(method: &str, probes: &[(&str, f64)], converged: bool) -> RunResult {
         cuts: 0,
         converged,
         wall_time_s: 0.5,
+        timings: Default::default(),
         volume_change: -1e-3,
         probes: probes.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         max_inverted_tets: 0,

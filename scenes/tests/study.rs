@@ -47,6 +47,7 @@ fn run_on(method: Method, element: TetElement, res: f64, value: f64, wall_time_s
         cuts: 0,
         converged: true,
         wall_time_s,
+        timings: Default::default(),
         volume_change: 0.0,
         probes: BTreeMap::from([(PROBE.to_string(), value)]),
         max_inverted_tets: 0,

@@ -25,6 +25,42 @@ pub struct Evaluation {
     pub magnitude: f64,
 }
 
+/// Every energy term of `model` in block order: the model's, the folded constraints of the
+/// dual/condensed solvers, the contact, and the inertia.
+fn terms<'a>(
+    model: &'a Model,
+    inertia: Option<&'a Inertia>,
+) -> impl Iterator<Item = &'a dyn EnergyTerm> {
+    (model.terms.iter().map(|t| t.as_ref() as &dyn EnergyTerm))
+        .chain(model.augmented.iter().map(|a| a as &dyn EnergyTerm))
+        .chain(model.contact.iter().map(|c| c as &dyn EnergyTerm))
+        .chain(model.surface_contact.iter().map(|c| c as &dyn EnergyTerm))
+        .chain(model.surface_friction.iter().map(|f| f as &dyn EnergyTerm))
+        .chain(inertia.into_iter().map(|i| i as &dyn EnergyTerm))
+}
+
+/// Where the constraints' geometric stiffness (eq. 23) sits in the Hessian's value buffer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Geometric {
+    /// Added into the block of the term with the same pattern (the elastic term's, for the
+    /// per-element and nodal constraints over the same elements): the pattern and every
+    /// Newton matrix hold its entries once.
+    Shares(usize),
+    /// A block of its own, after every term's.
+    Own,
+}
+
+impl Geometric {
+    /// Shares the first block (of those `offsets` delimit in `pairs`) whose pattern is
+    /// `pattern`, else its own.
+    fn place(pattern: &[(usize, usize)], offsets: &[usize], pairs: &[(usize, usize)]) -> Self {
+        offsets
+            .windows(2)
+            .position(|w| pairs[w[0]..w[1]] == *pattern)
+            .map_or(Geometric::Own, Geometric::Shares)
+    }
+}
+
 /// A model with its inertia (in dynamics), layouts and buffers.
 #[derive(Debug)]
 pub struct System<'m> {
@@ -32,8 +68,12 @@ pub struct System<'m> {
     pub inertia: Option<Inertia>,
     pub settings: Settings,
     /// Start of each term's block in `hessian_values`; the last block is the constraints'
-    /// geometric stiffness.
+    /// geometric stiffness unless it shares a term's block (`geometric`).
     offsets: Vec<usize>,
+    /// Where the constraints' geometric stiffness goes (saddle-point schemes only).
+    geometric: Option<Geometric>,
+    /// The geometric stiffness's values before they are added into a shared block.
+    geometric_scratch: Vec<f64>,
     /// The `(dof, dof)` pairs of every block, in order (a changing surface-contact block is
     /// spliced in place).
     pairs: Vec<(usize, usize)>,
@@ -60,36 +100,26 @@ impl<'m> System<'m> {
     ) -> Result<Self, SolverError> {
         let mut pairs = Vec::new();
         let mut offsets = vec![0];
-        let mut push = |p: Vec<(usize, usize)>| {
+        let push = |p: Vec<(usize, usize)>, pairs: &mut Vec<_>, offsets: &mut Vec<usize>| {
             pairs.extend(p);
             offsets.push(pairs.len());
         };
-        for term in model.terms.iter().map(|t| t.as_ref() as &dyn EnergyTerm) {
-            push(term.hessian_pattern());
-        }
-        if let Some(a) = &model.augmented {
-            push(a.hessian_pattern());
-        }
-        if let Some(c) = &model.contact {
-            push(c.hessian_pattern());
-        }
-        if let Some(c) = &model.surface_contact {
-            push(c.hessian_pattern());
-        }
-        if let Some(f) = &model.surface_friction {
-            push(f.hessian_pattern());
-        }
-        if let Some(i) = &inertia {
-            push(i.hessian_pattern());
+        for term in terms(model, inertia.as_ref()) {
+            push(term.hessian_pattern(), &mut pairs, &mut offsets);
         }
         let saddle = matches!(
             model.scheme,
             NonlinearScheme::SaddleDirect | NonlinearScheme::SaddleSchur
         );
+        let mut geometric = None;
         let (jacobian, jacobian_len) = match &model.constraints {
             Some(c) => {
                 if saddle {
-                    push(c.geometric_stiffness_pattern());
+                    let pattern = c.geometric_stiffness_pattern();
+                    geometric = Some(Geometric::place(&pattern, &offsets, &pairs));
+                    if geometric == Some(Geometric::Own) {
+                        push(pattern, &mut pairs, &mut offsets);
+                    }
                 }
                 let g = c.jacobian_pattern();
                 (
@@ -106,6 +136,8 @@ impl<'m> System<'m> {
             settings,
             hessian_values: vec![0.0; pairs.len()],
             offsets,
+            geometric,
+            geometric_scratch: Vec::new(),
             pairs,
             pattern_rebuilds: 0,
             hessian,
@@ -119,25 +151,7 @@ impl<'m> System<'m> {
     /// Every energy term: the model's, the folded constraints of the dual/condensed solvers,
     /// the contact, and the inertia.
     fn terms(&self) -> impl Iterator<Item = &dyn EnergyTerm> {
-        self.model
-            .terms
-            .iter()
-            .map(|t| t.as_ref() as &dyn EnergyTerm)
-            .chain(self.model.augmented.iter().map(|a| a as &dyn EnergyTerm))
-            .chain(self.model.contact.iter().map(|c| c as &dyn EnergyTerm))
-            .chain(
-                self.model
-                    .surface_contact
-                    .iter()
-                    .map(|c| c as &dyn EnergyTerm),
-            )
-            .chain(
-                self.model
-                    .surface_friction
-                    .iter()
-                    .map(|f| f as &dyn EnergyTerm),
-            )
-            .chain(self.inertia.iter().map(|i| i as &dyn EnergyTerm))
+        terms(self.model, self.inertia.as_ref())
     }
 
     /// Takes the surface-contact pairs at `x` as the pattern's, and the surface friction's
@@ -257,13 +271,11 @@ impl<'m> System<'m> {
         values: &mut [f64],
     ) -> Result<(f64, f64), SolverError> {
         let (mut energy, mut magnitude) = (0.0, 0.0);
-        let mut rest = values;
         let surface = self.surface_blocks();
         let mut contact_time = Duration::ZERO;
+        let mut terms = 0;
         for (block, term) in self.terms().enumerate() {
-            let len = self.offsets[block + 1] - self.offsets[block];
-            let (mine, tail) = rest.split_at_mut(len);
-            rest = tail;
+            let mine = &mut values[self.offsets[block]..self.offsets[block + 1]];
             let start = Instant::now();
             let e = term.evaluate(x, level, Some(&mut *gradient), Some(mine))?;
             if surface.contains(&block) {
@@ -271,10 +283,23 @@ impl<'m> System<'m> {
             }
             energy += e;
             magnitude += e.abs() + term.rounding_scale();
+            terms += 1;
         }
         self.contact_time += contact_time;
         if let (Some(c), Some(p)) = (&self.model.constraints, multipliers) {
-            c.geometric_stiffness_values(x, p, rest)?;
+            match self.geometric {
+                Some(Geometric::Shares(block)) => {
+                    let shared = &mut values[self.offsets[block]..self.offsets[block + 1]];
+                    let scratch = &mut self.geometric_scratch;
+                    scratch.clear();
+                    scratch.resize(shared.len(), 0.0);
+                    c.geometric_stiffness_values(x, p, scratch)?;
+                    for (v, g) in shared.iter_mut().zip(scratch.iter()) {
+                        *v += g;
+                    }
+                }
+                _ => c.geometric_stiffness_values(x, p, &mut values[self.offsets[terms]..])?,
+            }
             c.jacobian_values(x, &mut self.jacobian_values)?;
         }
         Ok((energy, magnitude))

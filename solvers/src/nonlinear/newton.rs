@@ -118,6 +118,7 @@ impl Newton {
                     .factorize_with_shifts(k, &ShiftSchedule::default())
                     .map_err(error)?;
                 report.timings.factorization += start.elapsed();
+                report.factorizations += 1;
                 let start = Instant::now();
                 cholesky.solve_in_place(rhs).map_err(error)?;
                 report.timings.solve += start.elapsed();
@@ -165,7 +166,9 @@ impl Newton {
         for _ in 0..iterations {
             if system.update_contact_pattern(x)? {
                 // New contact pairs: the pattern changed, so does the symbolic analysis.
+                let start = Instant::now();
                 self.linear = Newton::new(system)?.linear;
+                report.timings.setup += start.elapsed();
             }
             let Linearized {
                 eval,

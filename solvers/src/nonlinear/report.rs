@@ -28,6 +28,9 @@ pub struct IterationReport {
 /// Where the time of a step went.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Timings {
+    /// Sparsity patterns and symbolic factorizations: at a run's first attempt, and again
+    /// where the surface contact's pairs change the pattern.
+    pub setup: Duration,
     /// Element evaluation and sparse assembly.
     pub assembly: Duration,
     /// Numeric (and first symbolic) factorization.
@@ -46,6 +49,7 @@ pub struct Timings {
 
 impl std::ops::AddAssign for Timings {
     fn add_assign(&mut self, other: Self) {
+        self.setup += other.setup;
         self.assembly += other.assembly;
         self.factorization += other.factorization;
         self.solve += other.solve;
@@ -79,6 +83,9 @@ pub struct StepReport {
     /// Stored entries of the direct factorization's factor `L` (its memory is 8 bytes
     /// each; 0 for the iterative linear solvers): the fill its ordering left.
     pub factor_nnz: usize,
+    /// Numeric factorizations of the direct linear solvers (each counted once, however many
+    /// shifts it tried; 0 on the iterative path).
+    pub factorizations: usize,
     /// Wall time of the whole step.
     pub wall_time: Duration,
     /// Contact multiplier updates (outer augmented-Lagrangian iterations; 0 without obstacles).

@@ -303,7 +303,9 @@ impl SaddleNewton {
         for _ in 0..settings.max_iterations {
             if system.update_contact_pattern(x)? {
                 // New contact pairs: the pattern changed, so does the symbolic analysis.
+                let start = Instant::now();
                 *self = SaddleNewton::new(system)?;
+                report.timings.setup += start.elapsed();
             }
             let Linearized {
                 d_fixed,
@@ -523,6 +525,9 @@ impl SaddleNewton {
             }
         };
         report.timings.factorization += start.elapsed();
+        if !matches!(self.linear, Linear::Iterative(_)) {
+            report.factorizations += 1;
+        }
         Ok(shift)
     }
 

@@ -72,7 +72,9 @@ impl Simulation {
         let plan = self
             .plan(stepping)
             .map_err(|e| failure(e, 0, &self.state, &[]))?;
+        let setup = Instant::now();
         let mut run = Run::new(&self.model, plan).map_err(|e| failure(e, 0, &self.state, &[]))?;
+        run.setup = setup.elapsed();
         let stepper = Stepper::new(&stepping, &self.model.curve_corners);
         let mut progress = match self.resume.take() {
             Some(resumed) => {
@@ -230,6 +232,9 @@ struct Run<'s> {
     plan: RunPlan,
     /// Whether a state with inverted elements may be accepted ([`System::admits_inversion`]).
     admits_inversion: bool,
+    /// The time building the system and the solver took, not yet reported (the first
+    /// attempt's report carries it).
+    setup: std::time::Duration,
 }
 
 impl<'s> Run<'s> {
@@ -250,6 +255,7 @@ impl<'s> Run<'s> {
             system,
             solver,
             plan,
+            setup: std::time::Duration::ZERO,
         })
     }
 
@@ -280,6 +286,8 @@ impl<'s> Run<'s> {
             increment: attempt.increment,
             ..StepReport::default()
         };
+        let run_setup = std::mem::take(&mut self.setup);
+        report.timings.setup = run_setup;
         // The meshed obstacles move to the attempt's level; a crossing fails the attempt.
         let placed = self
             .system
@@ -303,7 +311,8 @@ impl<'s> Run<'s> {
         if let Some(contact) = &self.system.model.contact {
             report.contact = contact.summary(&x);
         }
-        report.wall_time = step_start.elapsed();
+        // The first attempt's wall time holds the run's setup too.
+        report.wall_time = step_start.elapsed() + run_setup;
         if result.is_err() {
             // Back to the last accepted step, contact multipliers included.
             if let (Some(contact), Some(start)) = (&self.system.model.contact, contact_start) {

@@ -15,6 +15,7 @@ use crate::resolve::{self, ResolvedScene};
 use isochor_mesh::Vec3;
 use isochor_solvers::{Checkpoint, MeshObstacle, Simulation};
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// Runs `scene` into `out`, from the start or from `resume`.
 pub(super) fn execute(
@@ -23,6 +24,7 @@ pub(super) fn execute(
     mut out: Option<OutputDir>,
     resume: Option<RunCheckpoint>,
 ) -> Result<(RunResult, Option<PathBuf>), SceneError> {
+    let model_start = Instant::now();
     let ResolvedScene {
         problem,
         stepping,
@@ -57,6 +59,7 @@ pub(super) fn execute(
     if let Some(spec) = friction {
         sim.set_friction(spec)?;
     }
+    let model_s = model_start.elapsed().as_secs_f64();
     // Only a run that has got this far replaces what an earlier run left.
     if let Some(dir) = out.as_mut() {
         dir.start()?;
@@ -96,6 +99,7 @@ pub(super) fn execute(
         solver: outcome,
         dofs: sim.num_dofs(),
         wall_time_s,
+        model_s,
     };
     finish(scene, options, &body, observer, outcome, out)
 }

@@ -13,7 +13,7 @@ use crate::output::{
     PreviewOptions,
 };
 use crate::probes;
-use crate::record::{RunResult, StepRecord};
+use crate::record::{RunResult, RunTimings, StepRecord};
 use crate::resolve::problem;
 use isochor_mesh::{ElementMesh, Vec3};
 use isochor_solvers::{LoadLevel, RunSummary, SimulationFailure, SolverError, State, StepReport};
@@ -28,6 +28,8 @@ pub(super) struct Outcome {
     pub dofs: usize,
     /// Wall time of the whole run, in seconds.
     pub wall_time_s: f64,
+    /// Wall time of resolving the scene and building its model, in seconds.
+    pub model_s: f64,
 }
 
 /// The last state of a run and how it ended.
@@ -82,6 +84,7 @@ pub(super) fn finish(
         ending: &ending,
         dofs: outcome.dofs,
         wall_time_s: outcome.wall_time_s,
+        model_s: outcome.model_s,
     };
     let result = run.result(history)?;
     let Some(dir) = out else {
@@ -121,6 +124,7 @@ struct Run<'a> {
     ending: &'a Ending,
     dofs: usize,
     wall_time_s: f64,
+    model_s: f64,
 }
 
 impl Run<'_> {
@@ -192,6 +196,7 @@ impl Run<'_> {
             converged: ending.error.is_none() && history.iter().all(|r| r.converged),
             cuts: history.iter().map(|s| s.cuts.len()).sum(),
             wall_time_s: self.wall_time_s,
+            timings: RunTimings::of(self.model_s, &ending.reports),
             volume_change: mesh.total_volume_at(&ending.state.positions) / mesh.rest_volume() - 1.0,
             probes,
             max_inverted_tets: max_inverted,
