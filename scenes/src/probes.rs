@@ -33,6 +33,8 @@ pub struct ProbeInput<'a> {
     pub kappa: Option<f64>,
     /// The accepted steps so far, for probes over the run (empty before a run).
     pub history: &'a [StepRecord],
+    /// The triangles of every cloth sheet (over the mesh's vertices).
+    pub cloth_triangles: &'a [[usize; 3]],
 }
 
 /// Evaluates every probe of `scene` (named, in name order).
@@ -99,6 +101,26 @@ fn pressure_load(input: &ProbeInput<'_>, load: usize) -> Result<PressureLoadReco
             ))
         }),
     }
+}
+
+/// The summed deformed length of the cloth edges (each once) with both ends in `nodes`.
+fn loop_length(triangles: &[[usize; 3]], nodes: &[usize], x: &[Vec3]) -> Result<f64, ProbeError> {
+    let mut selected = vec![false; x.len()];
+    nodes.iter().for_each(|&v| selected[v] = true);
+    let mut edges: Vec<[usize; 2]> = triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| [t[k], t[(k + 1) % 3]]))
+        .filter(|&[a, b]| selected[a] && selected[b])
+        .map(|[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    if edges.is_empty() {
+        return Err(ProbeError::Message(
+            "the selection holds no edge of a cloth's triangles".into(),
+        ));
+    }
+    Ok(edges.iter().map(|&[a, b]| (x[a] - x[b]).norm()).sum())
 }
 
 /// The largest `value` over the accepted steps (0 before a run).
@@ -207,6 +229,9 @@ fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
             };
             force.map_or(0.0, |[x, y, z]| (x * x + y * y + z * z).sqrt())
         }),
+        ProbeSpec::LoopLength { selection } => {
+            loop_length(input.cloth_triangles, selections.nodes(selection)?, x)?
+        }
         ProbeSpec::MinDistance => input
             .history
             .iter()
@@ -422,6 +447,7 @@ mod tests {
                 energies: Energies::default(),
                 kappa: None,
                 history: &[],
+                cloth_triangles: &[],
             },
         )
     }

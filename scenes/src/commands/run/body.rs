@@ -15,6 +15,8 @@ pub(super) struct Body {
     pub kappa: Option<f64>,
     /// What the user should know about how the meshes were taken (the run's warnings).
     pub notices: Vec<String>,
+    /// The triangles of every cloth sheet.
+    pub cloth_triangles: Vec<[usize; 3]>,
 }
 
 /// One state as the probes read it.
@@ -35,6 +37,11 @@ impl Body {
             zones,
             kappa: problem.material.mixed_kappa().ok(),
             notices: Vec::new(),
+            cloth_triangles: problem
+                .cloths
+                .iter()
+                .flat_map(|c| c.triangles.iter().copied())
+                .collect(),
         }
     }
 
@@ -50,6 +57,7 @@ impl Body {
             energies: state.energies,
             kappa: self.kappa,
             history: state.history,
+            cloth_triangles: &self.cloth_triangles,
         }
     }
 
