@@ -105,3 +105,152 @@ fn a_band_settles_on_a_rigid_cylinder() {
         "circumference {measured} against {polygon}"
     );
 }
+
+/// The error of a scene, whether parsing or resolving refuses it.
+fn error(text: &str) -> String {
+    let e = match parse(text) {
+        Err(e) => e.to_string(),
+        Ok(scene) => build(&scene)
+            .err()
+            .expect("the scene was accepted")
+            .to_string(),
+    };
+    e
+}
+
+/// The band scene with its mesh replaced by the surface file `name` of `text`.
+fn scene_with_file(name: &str, text: &str) -> (String, String) {
+    let dir = crate::common::scratch(&format!("cloth-{name}"));
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    let path = path.display().to_string();
+    let scene = band_scene(2, "", "").replace(
+        r#"mesh = { generator = "band", radius = 0.102, width = 0.05, res = 2 }"#,
+        &format!("mesh = {{ generator = \"file\", path = {path:?} }}"),
+    );
+    (scene, path)
+}
+
+/// A bad surface file is refused naming the body, the file and the key.
+#[test]
+fn bad_cloth_surfaces_name_the_body_file_and_key() {
+    let square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+    for (name, text, what) in [
+        ("no-triangles.obj", square.to_string(), "no triangles"),
+        (
+            "fin.obj",
+            format!("{square}v 0.5 0.5 1\nf 1 2 3\nf 1 3 4\nf 1 3 5\n"),
+            "on 3 triangles",
+        ),
+        (
+            "nan.obj",
+            "v 0 0 0\nv 1 0 0\nv NaN 1 0\nf 1 2 3\n".to_string(),
+            "finite",
+        ),
+    ] {
+        let (scene, path) = scene_with_file(name, &text);
+        let e = error(&scene);
+        for part in ["cloth 'band'", "bodies.1.mesh.path", &path, what] {
+            assert!(e.contains(part), "{name}: '{part}' not in: {e}");
+        }
+    }
+}
+
+/// A bad `rest_scale`, fabric constant, method, element or key is refused naming the body
+/// (or the key that cannot take a cloth) and the key.
+#[test]
+fn bad_cloth_keys_name_the_body_and_key() {
+    let fabric = "young = 1e6, poisson = 0.3, thickness = 5e-4, density = 300.0";
+    let with_fabric = |f: &str| band_scene(2, "", "").replace(fabric, f);
+    let cases = [
+        (
+            band_scene(2, "", "").replace("rest_scale = 0.9", "rest_scale = 0.0"),
+            vec!["cloth 'band'", "bodies.1.rest_scale", "positive"],
+        ),
+        (
+            band_scene(2, "", "").replace("rest_scale = 0.9", "rest_scale = -1.0"),
+            vec!["cloth 'band'", "bodies.1.rest_scale"],
+        ),
+        (
+            with_fabric("young = -1e6, poisson = 0.3, thickness = 5e-4, density = 300.0"),
+            vec!["cloth 'band'", "bodies.1.material.young"],
+        ),
+        (
+            with_fabric("young = 1e6, poisson = 0.7, thickness = 5e-4, density = 300.0"),
+            vec!["cloth 'band'", "bodies.1.material.poisson"],
+        ),
+        (
+            with_fabric("young = 1e6, poisson = 0.3, thickness = 0.0, density = 300.0"),
+            vec!["cloth 'band'", "bodies.1.material.thickness"],
+        ),
+        (
+            with_fabric("young = 1e6, poisson = 0.3, thickness = 5e-4, density = 0.0"),
+            vec!["cloth 'band'", "bodies.1.material.density"],
+        ),
+        (
+            with_fabric(
+                "young = 1e6, poisson = 0.3, thickness = 5e-4, density = 300.0, bending = 1.0",
+            ),
+            vec!["cloth 'band'", "bodies.1.material", "bending"],
+        ),
+        (
+            with_fabric("young = 1e6, poisson = 0.3, density = 300.0"),
+            vec!["cloth 'band'", "bodies.1.material", "thickness"],
+        ),
+        (band_scene(2, "colour = \"red\"", ""), vec!["colour"]),
+        (
+            band_scene(2, "", "").replace("method = \"standard\"", "method = \"mixed-p1\""),
+            vec!["cloth 'band'", "method", "mixed-p1", "standard"],
+        ),
+        (
+            band_scene(2, "", "").replace(
+                "method = \"standard\"",
+                "method = \"standard\"\nelement = \"tet10\"",
+            ),
+            vec!["cloth 'band'", "element", "tet10"],
+        ),
+        (
+            band_scene(2, "", "").replace("kind = \"cloth\"\n", ""),
+            vec!["body 'band'", "bodies.1.mesh.generator", "cloth"],
+        ),
+        (
+            band_scene(2, "", "").replace(
+                r#"generator = "band", radius = 0.102, width = 0.05, res = 2"#,
+                r#"generator = "ball", radius = 0.1, res = 1"#,
+            ),
+            vec!["cloth 'band'", "bodies.1.mesh.generator", "ball"],
+        ),
+    ];
+    for (scene, parts) in cases {
+        let e = error(&scene);
+        for part in parts {
+            assert!(e.contains(part), "'{part}' not in: {e}");
+        }
+    }
+}
+
+/// The band's triangles are written beside each frame (part 1 of its time in the `.pvd`),
+/// at its deformed positions: all 78 nodes and 104 triangles.
+#[test]
+fn frames_carry_the_cloth_surface() {
+    let dir = crate::common::scratch("cloth-frames");
+    let (scene, out) = (dir.join("band.toml"), dir.join("out"));
+    std::fs::write(&scene, band_scene(2, "", "")).unwrap();
+    let o = crate::common::isochor(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let pvd = std::fs::read_to_string(out.join("frame.pvd")).unwrap();
+    for frame in ["00000", "00001"] {
+        let part = format!(r#"part="1" file="frame_{frame}_band.vtp""#);
+        assert!(pvd.contains(&part), "{pvd}");
+        let vtp = std::fs::read_to_string(out.join(format!("frame_{frame}_band.vtp"))).unwrap();
+        assert!(
+            vtp.contains(r#"NumberOfPoints="78" NumberOfPolys="104""#),
+            "{vtp}"
+        );
+    }
+}
