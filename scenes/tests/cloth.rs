@@ -112,14 +112,10 @@ fn a_band_settles_on_a_rigid_cylinder() {
 
 /// The error of a scene, whether parsing or resolving refuses it.
 fn error(text: &str) -> String {
-    let e = match parse(text) {
-        Err(e) => e.to_string(),
-        Ok(scene) => build(&scene)
-            .err()
-            .expect("the scene was accepted")
-            .to_string(),
-    };
-    e
+    match parse(text).map(|scene| build(&scene)) {
+        Err(e) | Ok(Err(e)) => e.to_string(),
+        Ok(Ok(_)) => panic!("the scene was accepted"),
+    }
 }
 
 /// The band scene with its mesh replaced by the surface file `name` of `text`.
