@@ -254,3 +254,37 @@ fn frames_carry_the_cloth_surface() {
         );
     }
 }
+
+/// With `[contact]` the cloth is a body of the barrier contact: `steps.csv` has the force
+/// between the block and the band (zero: they are 0.1 m apart), and the band still settles.
+#[test]
+fn a_cloth_is_a_body_of_barrier_contact() {
+    let dir = crate::common::scratch("cloth-contact");
+    let (scene, out) = (dir.join("band.toml"), dir.join("out"));
+    std::fs::write(&scene, band_scene(2, "", "[contact]\ndhat = 1e-3")).unwrap();
+    let o = crate::common::isochor(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let steps = std::fs::read_to_string(out.join("steps.csv")).unwrap();
+    let header: Vec<&str> = steps.lines().next().unwrap().split(',').collect();
+    let last: Vec<&str> = steps.lines().last().unwrap().split(',').collect();
+    let i = header
+        .iter()
+        .position(|h| *h == "contact_force_block_band_x")
+        .unwrap_or_else(|| panic!("{header:?}"));
+    assert_eq!(last[i].parse::<f64>().unwrap(), 0.0);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let loop_length = summary["probes"]["waistband_circumference"]
+        .as_f64()
+        .unwrap();
+    let polygon = 26.0 * 2.0 * RADIUS * (PI / 26.0).sin();
+    assert!(
+        (loop_length / polygon - 1.0).abs() < 1e-5,
+        "{loop_length} against {polygon}"
+    );
+}
