@@ -1,6 +1,8 @@
 //! Cloth bodies in a scene (`[[bodies]]` with `kind = "cloth"`): a band on a rigid cylinder
-//! settles on it (the scene form of the validation test `cloth_sheets::band_on_a_rigid_cylinder_carries_laplace_pressure`,
-//! its numbers), and each bad input is an error naming the body, the file and the key.
+//! (the numbers of the validation test `cloth_sheets::band_on_a_rigid_cylinder_carries_laplace_pressure`)
+//! settles on it, generated or read from a placed OBJ file, with each method that takes a
+//! cloth and in barrier contact beside a block; frames carry its surface; each bad input is an
+//! error naming the body, the file and the key.
 
 use isochor_scenes::resolve::build;
 use isochor_scenes::{run_scene, RunOptions, Scene, SceneError};
@@ -286,5 +288,32 @@ fn a_cloth_is_a_body_of_barrier_contact() {
     assert!(
         (loop_length / polygon - 1.0).abs() < 1e-5,
         "{loop_length} against {polygon}"
+    );
+}
+
+/// The same band read from an OBJ file, written 1 m below and placed back (`place`), settles
+/// to the generated band's loop.
+#[test]
+fn a_band_from_a_surface_file_is_placed_and_settles() {
+    let band = isochor_mesh::generate::band(0.102, 0.05, 2).unwrap();
+    let mut obj = String::new();
+    for p in &band.vertices {
+        obj += &format!("v {} {} {}\n", p.x, p.y, p.z - 1.0);
+    }
+    for t in &band.triangles {
+        obj += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    }
+    let (scene, _) = scene_with_file("band.obj", &obj);
+    let scene = scene.replace(
+        "rest_scale = 0.9",
+        "rest_scale = 0.9\nplace = { translate = [0.0, 0.0, 1.0] }",
+    );
+    let (result, _) = run_scene(&parse(&scene).unwrap(), &RunOptions::default()).unwrap();
+    assert!(result.converged, "{:?}", result.error);
+    let polygon = 26.0 * 2.0 * RADIUS * (PI / 26.0).sin();
+    let measured = result.probes["waistband_circumference"];
+    assert!(
+        (measured / polygon - 1.0).abs() < 1e-5,
+        "circumference {measured} against {polygon}"
     );
 }
