@@ -158,8 +158,8 @@ fn bad_cloth_surfaces_name_the_body_file_and_key() {
     }
 }
 
-/// A bad `rest_scale`, fabric constant, method, element or key is refused naming the body
-/// (or the key that cannot take a cloth) and the key.
+/// A bad `rest_scale`, fabric constant, method, element or key, and a band placed through
+/// the block, are refused naming the body (or the key that cannot take a cloth) and the key.
 #[test]
 fn bad_cloth_keys_name_the_body_and_key() {
     let fabric = "young = 1e6, poisson = 0.3, thickness = 5e-4, density = 300.0";
@@ -223,6 +223,18 @@ fn bad_cloth_keys_name_the_body_and_key() {
             vec!["cloth 'band'", "bodies.1.mesh.generator", "ball"],
         ),
     ];
+    let through = band_scene(2, "", "").replace(
+        "min = [0.2, 0.0, 0.0], max = [0.22, 0.02, 0.02]",
+        "min = [0.09, -0.01, 0.01], max = [0.11, 0.01, 0.03]",
+    );
+    let cases = cases.into_iter().chain([(
+        through,
+        vec![
+            "key 'bodies'",
+            "'block' and 'band' overlap",
+            "1 nodes of 'band'",
+        ],
+    )]);
     for (scene, parts) in cases {
         let e = error(&scene);
         for part in parts {

@@ -130,6 +130,8 @@ pub fn build_bodies(
     }
     let joined = TetMesh::new(positions, corners.tets().to_vec())?;
     mesh.mesh = ElementMesh::linear(joined);
+    let solids = bodies.names.len() - bodies.cloths.len();
+    refuse_overlaps(scene, &mesh.mesh, &bodies, solids)?;
     Ok((mesh, bodies))
 }
 
@@ -182,7 +184,7 @@ fn build_solids(
         velocities,
         cloths: Vec::new(),
     };
-    refuse_overlaps(scene, &mesh, &bodies)?;
+    refuse_overlaps(scene, &mesh, &bodies, 0)?;
     Ok((
         SceneMesh {
             groups: joined_groups(&groups, &bodies.parts),
@@ -255,11 +257,13 @@ fn joined_groups(groups: &[Option<PhysicalGroups>], parts: &[Part]) -> Option<Ph
     Some(PhysicalGroups::new(joined))
 }
 
-/// Refuses two bodies of which one has boundary vertices strictly inside the other.
+/// Refuses two bodies of which one has boundary vertices (a cloth: any vertex) strictly
+/// inside the other (a solid), for the bodies from `from` on against every solid.
 fn refuse_overlaps(
     scene: &Scene,
     mesh: &ElementMesh,
     bodies: &SceneBodies,
+    from: usize,
 ) -> Result<(), SceneError> {
     let corners = mesh.corners();
     let surface = corners.boundary()?;
@@ -276,7 +280,8 @@ fn refuse_overlaps(
             |(lo, hi), v| (lo.inf(&x[v]), hi.sup(&x[v])),
         )
     };
-    for (a, part_a) in bodies.parts.iter().enumerate() {
+    let solids = bodies.parts.iter().enumerate();
+    for (a, part_a) in solids.filter(|(_, p)| !p.elements.is_empty()) {
         let (lo, hi) = body_box(part_a);
         // The body alone as a mesh, for point location.
         let tets: Vec<[usize; 4]> = part_a
@@ -286,11 +291,13 @@ fn refuse_overlaps(
             .collect();
         let alone = isochor_mesh::TetMesh::new(x[part_a.vertices.clone()].to_vec(), tets)?;
         let locator = TetLocator::new(&alone)?;
-        for (b, part_b) in bodies.parts.iter().enumerate().filter(|&(b, _)| b != a) {
+        let others = bodies.parts.iter().enumerate().skip(from);
+        for (b, part_b) in others.filter(|&(b, _)| b != a) {
+            let cloth = part_b.elements.is_empty();
             let inside = part_b
                 .vertices
                 .clone()
-                .filter(|&v| on_surface[v])
+                .filter(|&v| on_surface[v] || cloth)
                 .filter(|&v| {
                     let p = &x[v];
                     (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k]) && locator.contains(p)
@@ -301,8 +308,8 @@ fn refuse_overlaps(
                     scene,
                     "bodies".into(),
                     format!(
-                        "bodies '{}' and '{}' overlap at the start: {inside} surface nodes of '{}' lie inside '{}'; place them apart (`place`)",
-                        bodies.names[a], bodies.names[b], bodies.names[b], bodies.names[a]
+                        "bodies '{}' and '{}' overlap at the start: {inside} {}nodes of '{}' lie inside '{}'; place them apart (`place`)",
+                        bodies.names[a], bodies.names[b], if cloth { "" } else { "surface " }, bodies.names[b], bodies.names[a]
                     ),
                 ));
             }
