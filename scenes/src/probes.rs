@@ -9,7 +9,7 @@ use isochor_mesh::probes::{
     displacement_at, enclosed_volume_ratio, rotation_angle, volume_change, volume_ratio,
 };
 use isochor_mesh::{ElementMesh, TetMesh, Vec3, Zones, TET_FACES};
-use isochor_solvers::Energies;
+use isochor_solvers::{ClothSheet, Energies};
 use std::collections::{BTreeMap, HashMap};
 
 /// What probes read.
@@ -33,6 +33,8 @@ pub struct ProbeInput<'a> {
     pub kappa: Option<f64>,
     /// The accepted steps so far, for probes over the run (empty before a run).
     pub history: &'a [StepRecord],
+    /// The cloth sheets (their triangles over the mesh's vertices).
+    pub cloths: &'a [ClothSheet],
 }
 
 /// Evaluates every probe of `scene` (named, in name order).
@@ -99,6 +101,27 @@ fn pressure_load(input: &ProbeInput<'_>, load: usize) -> Result<PressureLoadReco
             ))
         }),
     }
+}
+
+/// The summed deformed length of the cloth edges (each once) with both ends in `nodes`.
+fn loop_length(cloths: &[ClothSheet], nodes: &[usize], x: &[Vec3]) -> Result<f64, ProbeError> {
+    let mut selected = vec![false; x.len()];
+    nodes.iter().for_each(|&v| selected[v] = true);
+    let mut edges: Vec<[usize; 2]> = cloths
+        .iter()
+        .flat_map(|c| &c.triangles)
+        .flat_map(|t| (0..3).map(move |k| [t[k], t[(k + 1) % 3]]))
+        .filter(|&[a, b]| selected[a] && selected[b])
+        .map(|[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    if edges.is_empty() {
+        return Err(ProbeError::Message(
+            "the selection holds no edge of a cloth's triangles".into(),
+        ));
+    }
+    Ok(edges.iter().map(|&[a, b]| (x[a] - x[b]).norm()).sum())
 }
 
 /// The largest `value` over the accepted steps (0 before a run).
@@ -207,6 +230,9 @@ fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
             };
             force.map_or(0.0, |[x, y, z]| (x * x + y * y + z * z).sqrt())
         }),
+        ProbeSpec::LoopLength { selection } => {
+            loop_length(input.cloths, selections.nodes(selection)?, x)?
+        }
         ProbeSpec::MinDistance => input
             .history
             .iter()
@@ -422,6 +448,7 @@ mod tests {
                 energies: Energies::default(),
                 kappa: None,
                 history: &[],
+                cloths: &[],
             },
         )
     }

@@ -8,6 +8,7 @@ mod bounds;
 mod builtin;
 mod checkpoints;
 mod cli;
+mod cloth;
 mod common;
 mod compare;
 mod contact;

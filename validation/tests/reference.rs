@@ -104,6 +104,7 @@ impl Bounds {
             ProbeSpec::Displacement { .. }
             | ProbeSpec::Position { .. }
             | ProbeSpec::RadiusIncrease { .. }
+            | ProbeSpec::LoopLength { .. }
             | ProbeSpec::MinDistance => Tolerance::relative(self.relative, DISPLACEMENT_FLOOR),
             ProbeSpec::VolumeChange
             | ProbeSpec::VolumeRatio { .. }

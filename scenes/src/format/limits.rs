@@ -351,7 +351,8 @@ fn mesh_key(spec: &MeshSpec) -> (&'static str, String) {
         | MeshSpec::Bubble { res }
         | MeshSpec::Finger { res }
         | MeshSpec::Torso { res }
-        | MeshSpec::Creature { res } => ("mesh.res", format!("res = {res}")),
+        | MeshSpec::Creature { res }
+        | MeshSpec::Band { res, .. } => ("mesh.res", format!("res = {res}")),
         MeshSpec::Explicit { .. } => ("mesh.tets", "the explicit mesh".to_string()),
         MeshSpec::File { path } => ("mesh.path", format!("the mesh file {}", path.display())),
     }

@@ -109,6 +109,18 @@ pub enum MeshSpec {
         /// Resolution: cells across the neck.
         res: usize,
     },
+    /// A band, the mesh of a cloth body only (`kind = "cloth"`): an open cylindrical triangle
+    /// surface of `radius` about the z axis from `z = 0` to `z = width`, `res` cells across
+    /// its width and about as many per width around (`isochor_mesh::generate::band`); the
+    /// body's `place` moves it.
+    Band {
+        /// Radius (m).
+        radius: f64,
+        /// Width along the axis (m).
+        width: f64,
+        /// Resolution: cells across the width.
+        res: usize,
+    },
     /// Explicit nodes and tets (small test scenes such as Fig. 2 of Sheen et al., and the
     /// arrays of `isochor.Problem` in Python), with named groups of their faces and tets.
     Explicit {
@@ -236,6 +248,11 @@ impl MeshSpec {
             MeshSpec::Finger { res } => generate::finger(*res).map(Generated::grouped),
             MeshSpec::Torso { res } => generate::torso(*res).map(Generated::grouped),
             MeshSpec::Creature { res } => generate::creature(*res).map(Generated::grouped),
+            MeshSpec::Band { .. } => Err(MeshError::parameter(
+                "generator",
+                "band",
+                "a band is a cloth surface, the mesh of a body of kind = \"cloth\"",
+            )),
             MeshSpec::Explicit { .. } => Err(MeshError::parameter(
                 "generator",
                 "explicit",
@@ -280,6 +297,9 @@ impl MeshSpec {
             MeshSpec::Finger { res } => generate::finger_counts(*res),
             MeshSpec::Torso { res } => generate::torso_counts(*res),
             MeshSpec::Creature { res } => generate::creature_counts(*res),
+            MeshSpec::Band { radius, width, res } => {
+                (generate::band_counts(*radius, *width, *res).0, 0.0)
+            }
             MeshSpec::Explicit {
                 positions, tets, ..
             } => (positions.len() as f64, tets.len() as f64),

@@ -35,7 +35,9 @@ mod stepping;
 pub mod validate;
 mod zones;
 
-pub use bodies::{BodyRef, BodySpec, PlacementSpec, RotationSpec, SCENE_BODY};
+pub use bodies::{
+    BodyKind, BodyRef, BodySpec, ClothMaterialSpec, PlacementSpec, RotationSpec, SCENE_BODY,
+};
 pub use common::Vector;
 pub use conditions::{CurveSpec, DirichletSpec, LoadsSpec, MotionSpec, PressureSpec, TractionSpec};
 pub use contact::{ContactSpec, ObstacleFrictionSpec, PairFrictionSpec, DEFAULT_EPSV};

@@ -142,6 +142,12 @@ pub enum ProbeSpec {
     /// accepted steps, in metres; only pairs within the barrier's `dhat` are measured (NaN
     /// when no pair came that close, or without barrier contact).
     MinDistance,
+    /// The deformed length (m) of the cloth edges with both ends in a selection: with the
+    /// middle ring of a band selected, the band's middle loop (a waistband's circumference).
+    LoopLength {
+        /// The selection (nodes of a cloth body).
+        selection: String,
+    },
     /// Largest norm of the total contact force over the run, or of the force of obstacle
     /// `obstacle` alone (its index in `obstacles`, from 0): two obstacles squeezing a body
     /// push with opposite forces that cancel in the total.

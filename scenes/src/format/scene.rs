@@ -1,6 +1,6 @@
 //! The whole scene: one field per section of the file.
 
-use super::bodies::{BodyRef, BodySpec, SCENE_BODY};
+use super::bodies::{BodyKind, BodyRef, BodySpec, SCENE_BODY};
 use super::conditions::{DirichletSpec, LoadsSpec};
 use super::contact::ContactSpec;
 use super::material::{MaterialSpec, RegionSpec};
@@ -111,8 +111,8 @@ impl Scene {
         }
     }
 
-    /// Every body in order: the scene's own (`[mesh]`, named `"body"`) if it has one, then
-    /// the `[[bodies]]` entries.
+    /// Every solid body in order: the scene's own (`[mesh]`, named `"body"`) if it has one,
+    /// then the solid `[[bodies]]` entries.
     pub fn bodies(&self) -> Vec<BodyRef<'_>> {
         let own = self.mesh.as_ref().map(|mesh| BodyRef {
             name: SCENE_BODY,
@@ -120,15 +120,30 @@ impl Scene {
             material: None,
             place: None,
             velocity: None,
+            rest_scale: None,
+            index: None,
         });
-        own.into_iter()
-            .chain(self.bodies.iter().map(BodyRef::from))
-            .collect()
+        let solids = self.entries(BodyKind::Solid);
+        own.into_iter().chain(solids).collect()
     }
 
-    /// Every body's mesh, in the order of [`Scene::bodies`].
+    /// The cloth bodies (`[[bodies]]` with `kind = "cloth"`), in order.
+    pub fn cloths(&self) -> Vec<BodyRef<'_>> {
+        self.entries(BodyKind::Cloth).collect()
+    }
+
+    /// The `[[bodies]]` entries of one kind.
+    fn entries(&self, kind: BodyKind) -> impl Iterator<Item = BodyRef<'_>> {
+        let entries = self.bodies.iter().enumerate();
+        entries
+            .filter(move |(_, b)| b.kind == kind)
+            .map(|(i, b)| BodyRef::entry(i, b))
+    }
+
+    /// Every solid body's mesh, in the order of [`Scene::bodies`].
     pub fn meshes(&self) -> impl Iterator<Item = &MeshSpec> {
-        self.mesh.iter().chain(self.bodies.iter().map(|b| &b.mesh))
+        let solids = self.bodies.iter().filter(|b| b.kind == BodyKind::Solid);
+        self.mesh.iter().chain(solids.map(|b| &b.mesh))
     }
 
     /// Whether the scene is dynamic.

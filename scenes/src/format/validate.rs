@@ -3,7 +3,7 @@
 //! section, the bounds on steps ([`super::limits`]), and, once the problem is built, supports
 //! that hold a quasi-static body and obstacles clear of the body at the start.
 
-use super::bodies::SCENE_BODY;
+use super::bodies::{BodyKind, BodyRef, ClothMaterialSpec, SCENE_BODY};
 use super::conditions::{CurveSpec, MotionSpec};
 use super::limits;
 use super::mesh::MeshSpec;
@@ -17,6 +17,7 @@ use super::stepping::{SteppingSpec, VOLUME_PROJECTIONS};
 use crate::error::SceneError;
 use isochor_mesh::element::Part;
 use isochor_solvers::{Method, Problem, MIN_INCREMENT_FLOOR};
+use serde::Deserialize;
 use toml::Value;
 
 /// Refuses NaN anywhere in a scene's TOML tree, and infinities except where a key accepts
@@ -66,8 +67,9 @@ type SectionCheck = fn(&Scene) -> Result<(), Fault>;
 /// Checks the cross-key rules of `scene` (read from `origin`) that serde cannot express, one
 /// section at a time, then the bounds on its steps.
 pub fn scene(scene: &Scene, origin: &str) -> Result<(), SceneError> {
-    let sections: [SectionCheck; 13] = [
+    let sections: [SectionCheck; 14] = [
         bodies,
+        cloths,
         contact,
         obstacle_names,
         material_and_regions,
@@ -122,7 +124,7 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
             "give [mesh] or at least one [[bodies]] entry",
         ));
     }
-    let all = scene.bodies();
+    let all: Vec<BodyRef> = scene.bodies().into_iter().chain(scene.cloths()).collect();
     for (i, body) in scene.bodies.iter().enumerate() {
         let key = format!("bodies.{i}");
         if body.name.is_empty() {
@@ -166,6 +168,130 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
     Ok(())
 }
 
+/// The methods a scene with a cloth body may use: those whose unknowns a node that no tet
+/// uses does not make singular (a band on a cylinder fails to converge with the others:
+/// mixed-p1's vertex pressures and zonal's zone Schur complement are singular there).
+pub const CLOTH_METHODS: [Method; 3] = [Method::Standard, Method::MixedP0, Method::MixedP0Log];
+
+/// Cloth bodies (`kind = "cloth"`): a `band` or a surface file (`.obj`, `.stl`, `.msh`) for
+/// mesh, the fabric's keys known and in range, a finite positive `rest_scale`, a solid body
+/// beside it, 4-node tets and a method of [`CLOTH_METHODS`]; a solid body has no band and no
+/// `rest_scale`. Each fault names the body.
+fn cloths(scene: &Scene) -> Result<(), Fault> {
+    for (i, body) in scene.bodies.iter().enumerate() {
+        let key = |field: &str| format!("bodies.{i}.{field}");
+        let name = &body.name;
+        if body.kind == BodyKind::Solid {
+            if matches!(body.mesh, MeshSpec::Band { .. }) {
+                return Err(fault(
+                    key("mesh.generator"),
+                    format!(
+                        "body '{name}': a band is a cloth surface: give the body kind = \"cloth\""
+                    ),
+                ));
+            }
+            if body.rest_scale.is_some() {
+                return Err(fault(
+                    key("rest_scale"),
+                    format!("body '{name}': rest_scale is a cloth's key (kind = \"cloth\")"),
+                ));
+            }
+            continue;
+        }
+        let cloth =
+            |field: &str, message: String| fault(key(field), format!("cloth '{name}': {message}"));
+        match &body.mesh {
+            MeshSpec::Band { .. } => {}
+            MeshSpec::File { path }
+                if matches!(
+                    path.extension()
+                        .and_then(|e| e.to_str())
+                        .map(str::to_ascii_lowercase)
+                        .as_deref(),
+                    Some("obj" | "stl" | "msh")
+                ) => {}
+            MeshSpec::File { path } => {
+                return Err(cloth(
+                    "mesh.path",
+                    format!(
+                        "{} is no surface file: give a .obj, .stl or .msh file",
+                        path.display()
+                    ),
+                ))
+            }
+            other => {
+                let generator = toml::Value::try_from(other)
+                    .ok()
+                    .and_then(|v| {
+                        v.get("generator")
+                            .and_then(|g| g.as_str().map(String::from))
+                    })
+                    .unwrap_or_default();
+                return Err(cloth(
+                    "mesh.generator",
+                    format!("a cloth's mesh is the band generator or a surface file (path), not '{generator}'"),
+                ));
+            }
+        }
+        let fabric = ClothMaterialSpec::deserialize(toml::Value::Table(body.material.clone()))
+            .map_err(|e| {
+                cloth(
+                    "material",
+                    format!("{e} (the fabric's keys: young, poisson, thickness, density)"),
+                )
+            })?;
+        if let Err(e) =
+            isochor_energies::cloth::Fabric::new(fabric.young, fabric.poisson, fabric.thickness)
+        {
+            let field = match e.name {
+                "E" => "young",
+                "nu" => "poisson",
+                other => other,
+            };
+            return Err(cloth(
+                &format!("material.{field}"),
+                format!("{} = {}: {}", field, e.value, e.reason),
+            ));
+        }
+        if !(fabric.density.is_finite() && fabric.density > 0.0) {
+            return Err(cloth(
+                "material.density",
+                format!(
+                    "density = {} must be a finite, positive density (kg/m^3)",
+                    fabric.density
+                ),
+            ));
+        }
+        if let Some(r) = body.rest_scale.filter(|r| !(r.is_finite() && *r > 0.0)) {
+            return Err(cloth(
+                "rest_scale",
+                format!("rest_scale = {r} must be finite and positive"),
+            ));
+        }
+        if scene.bodies().is_empty() {
+            return Err(cloth(
+                "kind",
+                "needs a solid body beside it (a problem's mesh needs a tet)".into(),
+            ));
+        }
+        if scene.element() != isochor_mesh::element::TetElement::Tet4 {
+            return Err(fault(
+                "element",
+                format!("cloth '{name}' (bodies.{i}) sits beside 4-node tets only: element = \"tet10\" cannot take a cloth"),
+            ));
+        }
+        let method = scene.method();
+        if !CLOTH_METHODS.contains(&method) {
+            let names: Vec<&str> = CLOTH_METHODS.iter().map(|m| m.name()).collect();
+            return Err(fault(
+                "method",
+                format!("cloth '{name}' (bodies.{i}): method '{}' cannot take a cloth (methods that can: {})", method.name(), names.join(", ")),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// `[contact]`: a positive reach and slip length, finite non-negative friction
 /// coefficients, pairs of bodies the scene has, obstacles it has.
 fn contact(scene: &Scene) -> Result<(), Fault> {
@@ -191,7 +317,8 @@ fn contact(scene: &Scene) -> Result<(), Fault> {
         }
     };
     coefficient("contact.friction".into(), c.friction)?;
-    let names: Vec<&str> = scene.bodies().iter().map(|b| b.name).collect();
+    let all = scene.bodies().into_iter().chain(scene.cloths());
+    let names: Vec<&str> = all.map(|b| b.name).collect();
     for (i, pair) in c.pairs.iter().enumerate() {
         coefficient(format!("contact.pairs[{i}].friction"), pair.friction)?;
         if let Some(body) = pair.bodies.iter().find(|b| !names.contains(&b.as_str())) {
@@ -390,6 +517,7 @@ fn probes(scene: &Scene) -> Result<(), Fault> {
                 }
             }
             ProbeSpec::VolumeRatio { selection: Some(s) }
+            | ProbeSpec::LoopLength { selection: s }
             | ProbeSpec::Position {
                 selection: Some(s), ..
             } => selection_defined(scene, format!("{key}.selection"), s)?,

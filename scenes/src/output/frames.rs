@@ -11,14 +11,16 @@
 //! hydrostatic pressure in the usual sense is `-mean_stress`), `von_mises`, `J`, `region` (0:
 //! the body's material, `i`: the scene's `i`-th region), `zone` (zonal method).
 //!
-//! Each meshed obstacle's placed surface is written beside each frame as a `.vtp` of
-//! triangles, listed in the `.pvd` as a further part of the frame's time.
+//! Each meshed obstacle's placed surface, then each cloth body's deformed surface, is written
+//! beside each frame as a `.vtp` of triangles, listed in the `.pvd` as a further part of the
+//! frame's time (the cloth's nodes are also points of the `.vtu`, in no cell).
 
 use crate::error::SceneError;
 use isochor_mesh::io::{
     write_pvd, write_pvd_parts, write_vtp_triangles, write_vtu_elements, Field, VtuEncoding,
 };
 use isochor_mesh::{ElementMesh, MeshError, Vec3};
+use isochor_solvers::ClothSheet;
 use nalgebra::Matrix3;
 use std::path::{Path, PathBuf};
 
@@ -108,6 +110,8 @@ pub struct FrameWriter {
     deformed_points: bool,
     /// The meshed obstacles' names and triangles.
     obstacles: Vec<(String, Vec<[usize; 3]>)>,
+    /// The cloths' names, first vertices and triangles over the vertices from there.
+    cloths: Vec<(String, std::ops::Range<usize>, Vec<[usize; 3]>)>,
     entries: Vec<(f64, String)>,
 }
 
@@ -133,6 +137,7 @@ impl FrameWriter {
             body_ids: None,
             deformed_points: false,
             obstacles: Vec::new(),
+            cloths: Vec::new(),
             entries: Vec::new(),
         }
     }
@@ -145,10 +150,35 @@ impl FrameWriter {
         self
     }
 
-    /// The file of obstacle `k` beside the frame file `frame`.
-    fn obstacle_file(&self, frame: &str, k: usize) -> String {
-        let name: String = self.obstacles[k]
-            .0
+    /// Writes each cloth sheet's deformed surface beside every frame, as
+    /// `STEM_00012_NAME.vtp`, listed in the `.pvd` after the meshed obstacles.
+    pub fn with_cloths(mut self, sheets: &[ClothSheet]) -> Self {
+        self.cloths = sheets
+            .iter()
+            .map(|sheet| {
+                let corners = sheet.triangles.iter().flatten();
+                let first = corners.clone().copied().min().unwrap_or(0);
+                let end = corners.copied().max().map_or(first, |v| v + 1);
+                let local = sheet.triangles.iter().map(|t| t.map(|v| v - first));
+                (sheet.name.clone(), first..end, local.collect())
+            })
+            .collect();
+        self
+    }
+
+    /// The names of the surfaces written beside each frame: the obstacles', the cloths'.
+    fn surface_names(&self) -> impl Iterator<Item = &str> {
+        let obstacles = self.obstacles.iter().map(|o| o.0.as_str());
+        obstacles.chain(self.cloths.iter().map(|c| c.0.as_str()))
+    }
+
+    /// The file of surface `k` ([`FrameWriter::surface_names`]) beside the frame file
+    /// `frame`.
+    fn surface_file(&self, frame: &str, k: usize) -> String {
+        let name: String = self
+            .surface_names()
+            .nth(k)
+            .unwrap_or_default()
             .chars()
             .map(|c| {
                 if c.is_ascii_alphanumeric() || c == '-' {
@@ -252,8 +282,13 @@ impl FrameWriter {
             .enumerate()
             .take(self.obstacles.len())
         {
-            let file = self.obstacle_file(&name, k);
+            let file = self.surface_file(&name, k);
             write_vtp_triangles(self.dir.join(file), placed, &self.obstacles[k].1)
+                .map_err(written)?;
+        }
+        for (k, (_, vertices, triangles)) in self.cloths.iter().enumerate() {
+            let file = self.surface_file(&name, self.obstacles.len() + k);
+            write_vtp_triangles(self.dir.join(file), &positions[vertices.clone()], triangles)
                 .map_err(written)?;
         }
         self.entries.push((t, name));
@@ -273,16 +308,16 @@ impl FrameWriter {
     /// Writes the `.pvd` collection of the frames written so far.
     pub fn finish(&self) -> Result<(), SceneError> {
         let path = self.dir.join(format!("{}.pvd", self.stem));
-        if self.obstacles.is_empty() {
+        let surfaces = self.obstacles.len() + self.cloths.len();
+        if surfaces == 0 {
             return write_pvd(path, &self.entries).map_err(written);
         }
         let parts: Vec<(f64, usize, String)> = self
             .entries
             .iter()
             .flat_map(|(t, frame)| {
-                std::iter::once((*t, 0, frame.clone())).chain(
-                    (0..self.obstacles.len()).map(|k| (*t, k + 1, self.obstacle_file(frame, k))),
-                )
+                std::iter::once((*t, 0, frame.clone()))
+                    .chain((0..surfaces).map(|k| (*t, k + 1, self.surface_file(frame, k))))
             })
             .collect();
         write_pvd_parts(path, &parts).map_err(written)

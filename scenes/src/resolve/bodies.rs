@@ -1,11 +1,15 @@
 //! The bodies of a scene as one mesh: each body's mesh built and placed, then joined into
-//! one mesh of the scene's element, each body a [`Part`] of it; their groups joined too.
+//! one mesh of the scene's element, each body a [`Part`] of it; their groups joined too. The
+//! cloth bodies' vertices come after the solids' (parts with no elements), their sheets
+//! beside.
 
+use super::cloth::cloth;
 use super::mesh::{mesh_with_groups, SceneMesh};
 use crate::error::SceneError;
 use crate::format::{PlacementSpec, Scene, SCENE_BODY};
 use isochor_mesh::element::{Part, TetElement};
-use isochor_mesh::{ElementMesh, PhysicalGroup, PhysicalGroups, TetLocator, Vec3};
+use isochor_mesh::{ElementMesh, PhysicalGroup, PhysicalGroups, TetLocator, TetMesh, Vec3};
+use isochor_solvers::ClothSheet;
 use nalgebra::{Rotation3, Unit};
 
 /// The bodies of a scene in the joined mesh.
@@ -17,6 +21,8 @@ pub struct SceneBodies {
     pub parts: Vec<Part>,
     /// The initial velocity of each, if given.
     pub velocities: Vec<Option<Vec3>>,
+    /// The sheets of the cloth bodies, the last `cloths.len()` bodies.
+    pub cloths: Vec<ClothSheet>,
 }
 
 impl SceneBodies {
@@ -30,7 +36,18 @@ impl SceneBodies {
                 elements: 0..mesh.num_elements(),
             }],
             velocities: vec![None],
+            cloths: Vec::new(),
         }
+    }
+
+    /// The solid bodies' names and parts (every body but the cloths).
+    pub fn solids(&self) -> impl Iterator<Item = (&str, &Part)> {
+        let solids = self.names.len() - self.cloths.len();
+        self.names
+            .iter()
+            .map(String::as_str)
+            .zip(&self.parts)
+            .take(solids)
     }
 
     /// The index of the body `name`, or the message naming the bodies there are.
@@ -74,23 +91,65 @@ impl SceneBodies {
     }
 }
 
-/// Builds every body's mesh (with its groups when `groups` is set), places it, and joins
-/// them; a scene of one unplaced body keeps its mesh exactly. Refuses bodies that overlap at
-/// the start, naming both and how many surface nodes of one lie inside the other.
+/// Builds every solid body's mesh (with its groups when `groups` is set), places it, and
+/// joins them; a scene of one unplaced body keeps its mesh exactly. Refuses bodies that
+/// overlap at the start, naming both and how many surface nodes of one lie inside the other.
+/// Then appends each cloth body's vertices ([`cloth`]; they stay out of the overlap check).
 pub fn build_bodies(
+    scene: &Scene,
+    element: TetElement,
+    groups: bool,
+) -> Result<(SceneMesh, SceneBodies), SceneError> {
+    let (mut mesh, mut bodies) = build_solids(scene, element, groups)?;
+    let cloths = scene.cloths();
+    if cloths.is_empty() {
+        return Ok((mesh, bodies));
+    }
+    if mesh.mesh.kind() != TetElement::Tet4 {
+        return Err(invalid(
+            scene,
+            "element".into(),
+            "a cloth sits beside 4-node tets only".into(),
+        ));
+    }
+    let corners = mesh.mesh.corners();
+    let mut positions = corners.positions().to_vec();
+    let elements = corners.num_tets();
+    for body in &cloths {
+        let first = positions.len();
+        let cloth = cloth(scene, body, first)?;
+        positions.extend(&cloth.vertices);
+        bodies.names.push(body.name.to_string());
+        bodies.parts.push(Part {
+            vertices: first..positions.len(),
+            mid_edge_nodes: positions.len()..positions.len(),
+            elements: elements..elements,
+        });
+        bodies.velocities.push(body.velocity.map(Vec3::from));
+        bodies.cloths.push(cloth.sheet);
+    }
+    let joined = TetMesh::new(positions, corners.tets().to_vec())?;
+    mesh.mesh = ElementMesh::linear(joined);
+    let solids = bodies.names.len() - bodies.cloths.len();
+    refuse_overlaps(scene, &mesh.mesh, &bodies, solids)?;
+    Ok((mesh, bodies))
+}
+
+/// The solid bodies of [`build_bodies`], joined.
+fn build_solids(
     scene: &Scene,
     element: TetElement,
     groups: bool,
 ) -> Result<(SceneMesh, SceneBodies), SceneError> {
     let bodies = scene.bodies();
     let mut meshes = Vec::with_capacity(bodies.len());
-    for (i, body) in bodies.iter().enumerate() {
+    for body in &bodies {
         let mut built = mesh_with_groups(body.mesh, element, groups)?;
         if let Some(place) = body.place {
             built.mesh = built
                 .mesh
                 .mapped(placement(place))
-                .map_err(|e| invalid(scene, key(scene, i, "place"), e.to_string()))?;
+                .map_err(|e| invalid(scene, body.key("place"), e.to_string()))?;
         }
         meshes.push(built);
     }
@@ -105,6 +164,7 @@ pub fn build_bodies(
                 names,
                 parts,
                 velocities,
+                cloths: Vec::new(),
             },
         ));
     }
@@ -122,8 +182,9 @@ pub fn build_bodies(
         names,
         parts,
         velocities,
+        cloths: Vec::new(),
     };
-    refuse_overlaps(scene, &mesh, &bodies)?;
+    refuse_overlaps(scene, &mesh, &bodies, 0)?;
     Ok((
         SceneMesh {
             groups: joined_groups(&groups, &bodies.parts),
@@ -133,12 +194,6 @@ pub fn build_bodies(
         },
         bodies,
     ))
-}
-
-/// The key of body `i`'s `field` (`[[bodies]]` entries are numbered after the scene's own).
-fn key(scene: &Scene, i: usize, field: &str) -> String {
-    let own = usize::from(scene.mesh.is_some());
-    format!("bodies.{}.{field}", i - own)
 }
 
 fn invalid(scene: &Scene, key: String, message: String) -> SceneError {
@@ -202,11 +257,13 @@ fn joined_groups(groups: &[Option<PhysicalGroups>], parts: &[Part]) -> Option<Ph
     Some(PhysicalGroups::new(joined))
 }
 
-/// Refuses two bodies of which one has boundary vertices strictly inside the other.
+/// Refuses two bodies of which one has boundary vertices (a cloth: any vertex) strictly
+/// inside the other (a solid), for the bodies from `from` on against every solid.
 fn refuse_overlaps(
     scene: &Scene,
     mesh: &ElementMesh,
     bodies: &SceneBodies,
+    from: usize,
 ) -> Result<(), SceneError> {
     let corners = mesh.corners();
     let surface = corners.boundary()?;
@@ -223,7 +280,8 @@ fn refuse_overlaps(
             |(lo, hi), v| (lo.inf(&x[v]), hi.sup(&x[v])),
         )
     };
-    for (a, part_a) in bodies.parts.iter().enumerate() {
+    let solids = bodies.parts.iter().enumerate();
+    for (a, part_a) in solids.filter(|(_, p)| !p.elements.is_empty()) {
         let (lo, hi) = body_box(part_a);
         // The body alone as a mesh, for point location.
         let tets: Vec<[usize; 4]> = part_a
@@ -233,11 +291,13 @@ fn refuse_overlaps(
             .collect();
         let alone = isochor_mesh::TetMesh::new(x[part_a.vertices.clone()].to_vec(), tets)?;
         let locator = TetLocator::new(&alone)?;
-        for (b, part_b) in bodies.parts.iter().enumerate().filter(|&(b, _)| b != a) {
+        let others = bodies.parts.iter().enumerate().skip(from);
+        for (b, part_b) in others.filter(|&(b, _)| b != a) {
+            let cloth = part_b.elements.is_empty();
             let inside = part_b
                 .vertices
                 .clone()
-                .filter(|&v| on_surface[v])
+                .filter(|&v| on_surface[v] || cloth)
                 .filter(|&v| {
                     let p = &x[v];
                     (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k]) && locator.contains(p)
@@ -248,8 +308,8 @@ fn refuse_overlaps(
                     scene,
                     "bodies".into(),
                     format!(
-                        "bodies '{}' and '{}' overlap at the start: {inside} surface nodes of '{}' lie inside '{}'; place them apart (`place`)",
-                        bodies.names[a], bodies.names[b], bodies.names[b], bodies.names[a]
+                        "bodies '{}' and '{}' overlap at the start: {inside} {}nodes of '{}' lie inside '{}'; place them apart (`place`)",
+                        bodies.names[a], bodies.names[b], if cloth { "" } else { "surface " }, bodies.names[b], bodies.names[a]
                     ),
                 ));
             }

@@ -39,12 +39,11 @@ pub fn regions(
         .iter()
         .flat_map(|r| &r.elements)
         .for_each(|&e| claimed[e] = true);
-    let own = usize::from(scene.mesh.is_some());
-    for (i, (body, part)) in scene.bodies().iter().zip(&bodies.parts).enumerate() {
+    for (body, part) in scene.bodies().iter().zip(&bodies.parts) {
         let Some(table) = body.material.filter(|t| !t.is_empty()) else {
             continue;
         };
-        let origin = format!("bodies.{}.material", i - own);
+        let origin = body.key("material");
         let material = region_material(&scene.material, body.name, table, origin, scene.method())?;
         let elements: Vec<usize> = part.elements.clone().filter(|&e| !claimed[e]).collect();
         if !elements.is_empty() {

@@ -7,6 +7,7 @@
 //! this module on top.
 
 pub mod bodies;
+pub mod cloth;
 pub mod friction;
 pub mod material;
 pub mod mesh;
@@ -125,14 +126,10 @@ pub fn build(scene: &Scene) -> Result<ResolvedScene, SceneError> {
         dirichlet,
         loads,
         obstacles,
-        cloths: Vec::new(),
+        cloths: bodies.cloths.clone(),
     };
-    let named: Vec<(&str, &Part)> = bodies
-        .names
-        .iter()
-        .map(String::as_str)
-        .zip(&bodies.parts)
-        .collect();
+    // The cloths rest on obstacles and bodies: only the solids need supports.
+    let named: Vec<(&str, &Part)> = bodies.solids().collect();
     validate::problem(scene, &problem, &named, settings.contact_tolerance)?;
     let notices = mesh.notices;
     Ok(ResolvedScene {

@@ -29,6 +29,7 @@ pub fn zones(
             bodies
                 .parts
                 .iter()
+                .filter(|p| !p.elements.is_empty())
                 .map(|p| p.elements.clone().collect())
                 .collect(),
         )

@@ -4,7 +4,7 @@ use crate::probes::ProbeInput;
 use crate::record::StepRecord;
 use crate::resolve::Selections;
 use isochor_mesh::{ElementMesh, Vec3, Zones};
-use isochor_solvers::{Energies, Problem};
+use isochor_solvers::{ClothSheet, Energies, Problem};
 
 /// The rest mesh, the selections and zones the probes read, and the material's `kappa`.
 pub(super) struct Body {
@@ -15,6 +15,8 @@ pub(super) struct Body {
     pub kappa: Option<f64>,
     /// What the user should know about how the meshes were taken (the run's warnings).
     pub notices: Vec<String>,
+    /// The cloth sheets.
+    pub cloths: Vec<ClothSheet>,
 }
 
 /// One state as the probes read it.
@@ -35,6 +37,7 @@ impl Body {
             zones,
             kappa: problem.material.mixed_kappa().ok(),
             notices: Vec::new(),
+            cloths: problem.cloths.clone(),
         }
     }
 
@@ -50,6 +53,7 @@ impl Body {
             energies: state.energies,
             kappa: self.kappa,
             history: state.history,
+            cloths: &self.cloths,
         }
     }
 

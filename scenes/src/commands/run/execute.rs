@@ -147,7 +147,8 @@ fn frame_writer(
             .iter()
             .map(|o| (o.name.clone(), o.triangles.clone()))
             .collect(),
-    );
+    )
+    .with_cloths(&body.cloths);
     let starts: Vec<Vec<Vec3>> = obstacles.iter().map(|o| o.vertices.clone()).collect();
     let rest = FrameFields {
         obstacle_positions: &starts,

@@ -250,10 +250,11 @@ fn warnings(scene: &Scene, history: &[StepRecord], notices: &[String]) -> Vec<St
     warnings
 }
 
-/// The pairs of bodies of `scene` as `a_b`, `a` before `b` in its order (none with one body).
+/// The pairs of bodies of `scene` as `a_b`, `a` before `b` in its order (the solids, then
+/// the cloths: the order of the joined mesh; none with one body).
 fn body_pairs(scene: &Scene) -> Vec<String> {
-    let bodies = scene.bodies();
-    let names: Vec<&str> = bodies.iter().map(|b| b.name).collect();
+    let bodies = scene.bodies().into_iter().chain(scene.cloths());
+    let names: Vec<&str> = bodies.map(|b| b.name).collect();
     if names.len() < 2 {
         return Vec::new();
     }
