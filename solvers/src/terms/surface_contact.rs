@@ -330,7 +330,6 @@ impl SurfaceContact {
         let full = self.rigid.extend(x);
         self.potential()
             .pair_gradients(&self.surface, &self.candidates(&full), &self.rest, &full)
-            .collect()
     }
 
     /// From pairs with the gradients of their potentials: the force each meshed obstacle
@@ -427,21 +426,42 @@ impl EnergyTerm for SurfaceContact {
             own = self.candidates(&x);
             &own
         };
-        let energy = potential.energy(&self.surface, candidates, &self.rest, &x);
-        if let Some(g) = gradient {
-            if self.rigid.is_empty() {
-                potential.add_gradient(&self.surface, candidates, &self.rest, &x, g);
-            } else {
+        let hessian_asked = hessian.is_some();
+        let (energy, blocks) = match gradient {
+            None => potential.evaluate(
+                &self.surface,
+                candidates,
+                &self.rest,
+                &x,
+                None,
+                hessian_asked,
+            ),
+            Some(g) if self.rigid.is_empty() => potential.evaluate(
+                &self.surface,
+                candidates,
+                &self.rest,
+                &x,
+                Some(g),
+                hessian_asked,
+            ),
+            Some(g) => {
                 // The obstacles' entries are dropped: they are no degrees of freedom.
                 let mut full = vec![0.0; 3 * x.len()];
-                potential.add_gradient(&self.surface, candidates, &self.rest, &x, &mut full);
+                let evaluated = potential.evaluate(
+                    &self.surface,
+                    candidates,
+                    &self.rest,
+                    &x,
+                    Some(&mut full),
+                    hessian_asked,
+                );
                 for (gi, fi) in g.iter_mut().zip(&full[..3 * body.len()]) {
                     *gi += fi;
                 }
+                evaluated
             }
-        }
+        };
         if let Some(h) = hessian {
-            let blocks = potential.hessian_blocks(&self.surface, candidates, &self.rest, &x);
             let rows = self.rows();
             let mut at = 0;
             for (nodes, block) in &blocks {

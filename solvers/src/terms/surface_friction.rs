@@ -21,8 +21,10 @@ use crate::contact::{FrictionPair, PairForce};
 use crate::error::SolverError;
 use crate::problem::friction::SurfaceFrictionSpec;
 use crate::problem::schedule::LoadLevel;
+use isochor_mesh::contact::Derivatives;
 use isochor_mesh::Vec3;
 use nalgebra::SVector;
+use rayon::prelude::*;
 use std::sync::{RwLock, RwLockReadGuard};
 
 /// What the barrier hands friction at a lagged state
@@ -180,18 +182,32 @@ impl EnergyTerm for SurfaceFriction {
     ) -> Result<f64, SolverError> {
         let lagged = self.read();
         let rows = lagged.rows();
-        let mut energy = 0.0;
-        let mut at = 0;
-        for (nodes, pair) in &lagged.pairs {
-            let d = pair.derivatives(&lagged.motion(nodes, x));
-            energy += d.value;
-            if let Some(g) = gradient.as_deref_mut() {
-                rows.scatter(nodes, d.gradient.as_slice(), g);
+        // Each pair's values in parallel (rayon), summed and scattered in pair order: the
+        // same bits on any number of threads.
+        let energy: f64 = if gradient.is_none() && hessian.is_none() {
+            let energies: Vec<f64> = lagged
+                .pairs
+                .par_iter()
+                .map(|(nodes, pair)| pair.potential(&lagged.motion(nodes, x)))
+                .collect();
+            energies.iter().sum()
+        } else {
+            let shares: Vec<Derivatives<12>> = lagged
+                .pairs
+                .par_iter()
+                .map(|(nodes, pair)| pair.derivatives(&lagged.motion(nodes, x)))
+                .collect();
+            let mut at = 0;
+            for ((nodes, _), d) in lagged.pairs.iter().zip(&shares) {
+                if let Some(g) = gradient.as_deref_mut() {
+                    rows.scatter(nodes, d.gradient.as_slice(), g);
+                }
+                if let Some(h) = hessian.as_deref_mut() {
+                    at += rows.copy_block(nodes, &d.hessian, &mut h[at..]);
+                }
             }
-            if let Some(h) = hessian.as_deref_mut() {
-                at += rows.copy_block(nodes, &d.hessian, &mut h[at..]);
-            }
-        }
+            shares.iter().map(|d| d.value).sum()
+        };
         if !energy.is_finite() {
             return Err(SolverError::NonFinite("the friction energy"));
         }
