@@ -75,26 +75,42 @@ impl Pairs<'_> {
         }
     }
 
-    /// `f` of every pair with its nodes' positions in `x`, in parallel (rayon), the results
-    /// in pair order: each pair's result computed on its own, so the same bits on any number
-    /// of threads (callers sum and scatter them in that order).
-    fn map<T: Send>(&self, x: &[Vec3], f: impl Fn(&Pair, &[Vec3; 4]) -> T + Sync) -> Vec<T> {
-        (0..self.candidates.len())
+    /// `f` of every pair with its nodes' positions in `x` and its own input (`inputs`: one
+    /// per pair, in pair order), in parallel (rayon), the results in pair order: each pair's
+    /// result computed on its own, so the same bits on any number of threads (callers sum
+    /// and scatter them in that order).
+    fn map_with<S: Send, T: Send>(
+        &self,
+        x: &[Vec3],
+        inputs: Vec<S>,
+        f: impl Fn(&Pair, &[Vec3; 4], S) -> T + Sync,
+    ) -> Vec<T> {
+        assert_eq!(inputs.len(), self.candidates.len(), "one input per pair");
+        inputs
             .into_par_iter()
-            .map(|i| {
+            .enumerate()
+            .map(|(i, input)| {
                 let pair = self.get(i);
-                f(&pair, &pair.nodes.map(|n| x[n]))
+                f(&pair, &pair.nodes.map(|n| x[n]), input)
             })
             .collect()
     }
+
+    /// [`Self::map_with`] without inputs.
+    fn map<T: Send>(&self, x: &[Vec3], f: impl Fn(&Pair, &[Vec3; 4]) -> T + Sync) -> Vec<T> {
+        let inputs = vec![(); self.candidates.len()];
+        self.map_with(x, inputs, |pair, y, ()| f(pair, y))
+    }
 }
 
-/// One pair's share of the potential at a state: its energy, and its gradient and
-/// PSD-projected Hessian block (`None` beyond `dhat`).
-struct Share {
-    nodes: [usize; 4],
-    energy: f64,
-    local: Option<(SVector<f64, 12>, SMatrix<f64, 12, 12>)>,
+/// Where [`BarrierPotential::evaluate`] puts the PSD-projected Hessian block of each pair
+/// (zero beyond `dhat`): `write(nodes, block, slot)` into the pair's own slot, one slot per
+/// candidate pair in the candidates' order (point-triangle pairs, then edge-edge pairs).
+pub struct HessianBlocks<'a> {
+    /// Each pair's part of the output.
+    pub slots: Vec<&'a mut [f64]>,
+    /// Writes a pair's block into its slot.
+    pub write: &'a (dyn Fn(&[usize; 4], &SMatrix<f64, 12, 12>, &mut [f64]) + Sync),
 }
 
 impl Pair {
@@ -120,15 +136,14 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> f64 {
-        self.evaluate(surface, candidates, rest, x, None, false).0
+        self.evaluate(surface, candidates, rest, x, None, None)
     }
 
     /// The potential at `x` (as [`Self::energy`]), with its gradient added to `gradient`
-    /// (three entries per node) when given and, when `hessian`, the PSD-projected Hessian
-    /// block of every candidate pair in the candidates' order (point-triangle pairs, then
-    /// edge-edge pairs): the pair's four nodes and its `12 x 12` block (zero beyond `dhat`;
-    /// the nodes depend on the candidates only, so a fixed candidate set has a fixed
-    /// sparsity pattern). One parallel pass over the pairs, whose values are summed and
+    /// (three entries per node) when given and every pair's PSD-projected Hessian block
+    /// written by `hessian` when given (the blocks' nodes depend on the candidates only, so
+    /// a fixed candidate set has a fixed sparsity pattern). One parallel pass over the
+    /// pairs, each written into its own slot, the energies summed and the gradients
     /// scattered in pair order: the same bits on any number of threads.
     pub fn evaluate(
         &self,
@@ -137,47 +152,40 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
         gradient: Option<&mut [f64]>,
-        hessian: bool,
-    ) -> (f64, Vec<([usize; 4], SMatrix<f64, 12, 12>)>) {
+        hessian: Option<HessianBlocks<'_>>,
+    ) -> f64 {
         let pairs = Pairs {
             surface,
             candidates,
             rest,
         };
-        if !hessian {
-            let Some(g) = gradient else {
-                let energies = pairs.map(x, |pair, y| self.pair_energy(pair, y));
-                return (energies.iter().sum(), Vec::new());
-            };
-            let shares = pairs.map(x, |pair, y| {
-                let local = self.local(pair, y).map(|l| (pair.nodes, l.gradient));
-                (self.pair_energy(pair, y), local)
-            });
-            for (nodes, local) in shares.iter().filter_map(|s| s.1.as_ref()) {
-                scatter(nodes, local, g);
+        let derivatives = gradient.is_some() || hessian.is_some();
+        let (slots, write) = match hessian {
+            Some(h) => (h.slots.into_iter().map(Some).collect(), Some(h.write)),
+            None => ((0..candidates.len()).map(|_| None).collect(), None),
+        };
+        let shares = pairs.map_with(x, slots, |pair, y, slot| {
+            let energy = self.pair_energy(pair, y);
+            if !derivatives {
+                return (pair.nodes, energy, None);
             }
-            return (shares.iter().map(|s| s.0).sum(), Vec::new());
-        }
-        let shares = pairs.map(x, |pair, y| Share {
-            nodes: pair.nodes,
-            energy: self.pair_energy(pair, y),
-            local: self
-                .local(pair, y)
-                .map(|l| (l.gradient, project_to_psd(&l.hessian))),
+            let local = self.local(pair, y);
+            if let (Some(slot), Some(write)) = (slot, write) {
+                let block = local
+                    .as_ref()
+                    .map_or_else(SMatrix::zeros, |l| project_to_psd(&l.hessian));
+                write(&pair.nodes, &block, slot);
+            }
+            (pair.nodes, energy, local.map(|l| l.gradient))
         });
-        let energy = shares.iter().map(|s| s.energy).sum();
         if let Some(g) = gradient {
-            for share in &shares {
-                if let Some((local, _)) = &share.local {
-                    scatter(&share.nodes, local, g);
+            for (nodes, _, local) in &shares {
+                if let Some(local) = local {
+                    scatter(nodes, local, g);
                 }
             }
         }
-        let blocks = shares
-            .into_iter()
-            .map(|s| (s.nodes, s.local.map_or_else(SMatrix::zeros, |l| l.1)))
-            .collect();
-        (energy, blocks)
+        shares.iter().map(|s| s.1).sum()
     }
 
     /// The pair's potential at its nodes' positions `y`.
@@ -242,7 +250,7 @@ impl BarrierPotential {
         x: &[Vec3],
         gradient: &mut [f64],
     ) {
-        self.evaluate(surface, candidates, rest, x, Some(gradient), false);
+        self.evaluate(surface, candidates, rest, x, Some(gradient), None);
     }
 
     /// Every candidate pair within `dhat` at `x` with the gradient of its potential on its
@@ -268,7 +276,7 @@ impl BarrierPotential {
             .collect()
     }
 
-    /// The four nodes of every candidate pair, in the order of [`Self::evaluate`]'s blocks.
+    /// The four nodes of every candidate pair, in the order of [`HessianBlocks::slots`].
     pub fn pair_nodes(
         surface: &ContactSurface,
         candidates: &Candidates,
@@ -291,9 +299,20 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> Vec<(usize, usize, f64)> {
+        const LEN: usize = 144;
+        let mut values = vec![0.0; LEN * candidates.len()];
+        let copy = |_: &[usize; 4], block: &SMatrix<f64, 12, 12>, slot: &mut [f64]| {
+            slot.copy_from_slice(block.as_slice());
+        };
+        let blocks = HessianBlocks {
+            slots: values.chunks_mut(LEN).collect(),
+            write: &copy,
+        };
+        self.evaluate(surface, candidates, rest, x, None, Some(blocks));
+        let nodes = Self::pair_nodes(surface, candidates, rest);
         let mut triplets = Vec::new();
-        let (_, blocks) = self.evaluate(surface, candidates, rest, x, None, true);
-        for (nodes, h) in blocks {
+        for (nodes, h) in nodes.iter().zip(values.chunks(LEN)) {
+            let h = SMatrix::<f64, 12, 12>::from_column_slice(h);
             if h.iter().all(|&v| v == 0.0) {
                 continue;
             }

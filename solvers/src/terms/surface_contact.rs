@@ -21,7 +21,7 @@ mod step_limit;
 use super::pair_rows::PairRows;
 use super::surface_friction::{FrictionLag, SurfaceFriction};
 use super::EnergyTerm;
-use crate::contact::{BarrierPotential, StiffnessBounds};
+use crate::contact::{BarrierPotential, HessianBlocks, StiffnessBounds};
 use crate::error::SolverError;
 use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::schedule::LoadLevel;
@@ -29,7 +29,7 @@ use isochor_mesh::contact::{
     contact_candidates, intersecting_triangles, Candidates, CcdSettings, ContactSurface, PairFilter,
 };
 use isochor_mesh::Vec3;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 use rigid::RigidSurfaces;
 use std::sync::RwLock;
 
@@ -426,48 +426,39 @@ impl EnergyTerm for SurfaceContact {
             own = self.candidates(&x);
             &own
         };
-        let hessian_asked = hessian.is_some();
-        let (energy, blocks) = match gradient {
-            None => potential.evaluate(
-                &self.surface,
-                candidates,
-                &self.rest,
-                &x,
-                None,
-                hessian_asked,
-            ),
-            Some(g) if self.rigid.is_empty() => potential.evaluate(
-                &self.surface,
-                candidates,
-                &self.rest,
-                &x,
-                Some(g),
-                hessian_asked,
-            ),
-            Some(g) => {
+        // Each pair's block goes straight into its part of the pattern's values.
+        let rows = self.rows();
+        let write = |nodes: &[usize; 4], block: &SMatrix<f64, 12, 12>, slot: &mut [f64]| {
+            rows.copy_block(nodes, block, slot);
+        };
+        let blocks = hessian.map(|mut h| {
+            let nodes = BarrierPotential::pair_nodes(&self.surface, candidates, &self.rest);
+            let mut slots = Vec::with_capacity(nodes.len());
+            for n in &nodes {
+                let (slot, tail) = h.split_at_mut(rows.block_len(n));
+                slots.push(slot);
+                h = tail;
+            }
+            HessianBlocks {
+                slots,
+                write: &write,
+            }
+        });
+        let evaluate = |g: Option<&mut [f64]>| {
+            potential.evaluate(&self.surface, candidates, &self.rest, &x, g, blocks)
+        };
+        let energy = match gradient {
+            Some(g) if !self.rigid.is_empty() => {
                 // The obstacles' entries are dropped: they are no degrees of freedom.
                 let mut full = vec![0.0; 3 * x.len()];
-                let evaluated = potential.evaluate(
-                    &self.surface,
-                    candidates,
-                    &self.rest,
-                    &x,
-                    Some(&mut full),
-                    hessian_asked,
-                );
+                let energy = evaluate(Some(&mut full));
                 for (gi, fi) in g.iter_mut().zip(&full[..3 * body.len()]) {
                     *gi += fi;
                 }
-                evaluated
+                energy
             }
+            g => evaluate(g),
         };
-        if let Some(h) = hessian {
-            let rows = self.rows();
-            let mut at = 0;
-            for (nodes, block) in &blocks {
-                at += rows.copy_block(nodes, block, &mut h[at..]);
-            }
-        }
         Ok(energy)
     }
 
