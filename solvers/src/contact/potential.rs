@@ -103,6 +103,9 @@ impl Pairs<'_> {
     }
 }
 
+/// Writes a pair's `12 x 12` block (its nodes, the block) into the pair's slot.
+pub type WriteBlock<'a> = dyn Fn(&[usize; 4], &SMatrix<f64, 12, 12>, &mut [f64]) + Sync + 'a;
+
 /// Where [`BarrierPotential::evaluate`] puts the PSD-projected Hessian block of each pair
 /// (zero beyond `dhat`): `write(nodes, block, slot)` into the pair's own slot, one slot per
 /// candidate pair in the candidates' order (point-triangle pairs, then edge-edge pairs).
@@ -110,7 +113,7 @@ pub struct HessianBlocks<'a> {
     /// Each pair's part of the output.
     pub slots: Vec<&'a mut [f64]>,
     /// Writes a pair's block into its slot.
-    pub write: &'a (dyn Fn(&[usize; 4], &SMatrix<f64, 12, 12>, &mut [f64]) + Sync),
+    pub write: &'a WriteBlock<'a>,
 }
 
 impl Pair {
