@@ -4,6 +4,7 @@
 
 mod common;
 mod contact;
+mod contact_threads;
 mod equivalences;
 mod examples;
 mod inversion;

@@ -12,5 +12,5 @@ mod stiffness;
 
 pub use barrier::{barrier, barrier_first_derivative, barrier_second_derivative, normal_force};
 pub use friction::{friction_f0, friction_f1, plane_basis, tangent_basis, FrictionPair};
-pub use potential::{BarrierPotential, PairForce};
+pub use potential::{BarrierPotential, HessianBlocks, PairForce, WriteBlock};
 pub use stiffness::{initial_barrier_stiffness, update_barrier_stiffness, StiffnessBounds};

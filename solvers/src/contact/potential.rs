@@ -2,7 +2,9 @@
 //! 12): `kappa sum_PT b(d) + kappa sum_EE e_k b(d)`, each pair at its closest-feature
 //! distance, edge-edge pairs mollified; with its gradient and the PSD-projected Hessian of
 //! every pair, on the global vector of node positions (three coordinates per node). Pairs
-//! are IPC's: a point-edge distance reached from two triangles counts twice.
+//! are IPC's: a point-edge distance reached from two triangles counts twice. The pairs are
+//! evaluated in parallel (rayon), each on its own, and summed or scattered in pair order,
+//! so every value has the same bits on any number of threads.
 
 use super::barrier::{barrier, barrier_first_derivative, barrier_second_derivative, normal_force};
 use isochor_energies::project_to_psd;
@@ -13,6 +15,7 @@ use isochor_mesh::contact::{
 };
 use isochor_mesh::Vec3;
 use nalgebra::{SMatrix, SVector};
+use rayon::prelude::*;
 
 /// The barrier potential with reach `dhat` (a distance) and stiffness `kappa`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,26 +46,74 @@ struct Pair {
     eps_x: Option<f64>,
 }
 
-fn pairs<'a>(
+/// The candidate set as indexed pairs: the point-triangle pairs, then the edge-edge pairs.
+#[derive(Clone, Copy)]
+struct Pairs<'a> {
     surface: &'a ContactSurface,
     candidates: &'a Candidates,
     rest: &'a [Vec3],
-) -> impl Iterator<Item = Pair> + 'a {
-    let tris = surface.triangles();
-    let edges = surface.edges();
-    let pt = candidates.point_triangle.iter().map(move |&[p, t]| Pair {
-        nodes: [p, tris[t][0], tris[t][1], tris[t][2]],
-        eps_x: None,
-    });
-    let ee = candidates.edge_edge.iter().map(move |&[i, j]| {
+}
+
+impl Pairs<'_> {
+    /// Pair `i`.
+    fn get(&self, i: usize) -> Pair {
+        let pt = &self.candidates.point_triangle;
+        if let Some(&[p, t]) = pt.get(i) {
+            let tri = self.surface.triangles()[t];
+            return Pair {
+                nodes: [p, tri[0], tri[1], tri[2]],
+                eps_x: None,
+            };
+        }
+        let edges = self.surface.edges();
+        let [i, j] = self.candidates.edge_edge[i - pt.len()];
         let nodes = [edges[i][0], edges[i][1], edges[j][0], edges[j][1]];
-        let r = nodes.map(|n| rest[n]);
+        let r = nodes.map(|n| self.rest[n]);
         Pair {
             nodes,
             eps_x: Some(edge_edge_mollifier_threshold(&r[0], &r[1], &r[2], &r[3])),
         }
-    });
-    pt.chain(ee)
+    }
+
+    /// `f` of every pair with its nodes' positions in `x` and its own input (`inputs`: one
+    /// per pair, in pair order), in parallel (rayon), the results in pair order: each pair's
+    /// result computed on its own, so the same bits on any number of threads (callers sum
+    /// and scatter them in that order).
+    fn map_with<S: Send, T: Send>(
+        &self,
+        x: &[Vec3],
+        inputs: Vec<S>,
+        f: impl Fn(&Pair, &[Vec3; 4], S) -> T + Sync,
+    ) -> Vec<T> {
+        assert_eq!(inputs.len(), self.candidates.len(), "one input per pair");
+        inputs
+            .into_par_iter()
+            .enumerate()
+            .map(|(i, input)| {
+                let pair = self.get(i);
+                f(&pair, &pair.nodes.map(|n| x[n]), input)
+            })
+            .collect()
+    }
+
+    /// [`Self::map_with`] without inputs.
+    fn map<T: Send>(&self, x: &[Vec3], f: impl Fn(&Pair, &[Vec3; 4]) -> T + Sync) -> Vec<T> {
+        let inputs = vec![(); self.candidates.len()];
+        self.map_with(x, inputs, |pair, y, ()| f(pair, y))
+    }
+}
+
+/// Writes a pair's `12 x 12` block (its nodes, the block) into the pair's slot.
+pub type WriteBlock<'a> = dyn Fn(&[usize; 4], &SMatrix<f64, 12, 12>, &mut [f64]) + Sync + 'a;
+
+/// Where [`BarrierPotential::evaluate`] puts the PSD-projected Hessian block of each pair
+/// (zero beyond `dhat`): `write(nodes, block, slot)` into the pair's own slot, one slot per
+/// candidate pair in the candidates' order (point-triangle pairs, then edge-edge pairs).
+pub struct HessianBlocks<'a> {
+    /// Each pair's part of the output.
+    pub slots: Vec<&'a mut [f64]>,
+    /// Writes a pair's block into its slot.
+    pub write: &'a WriteBlock<'a>,
 }
 
 impl Pair {
@@ -88,19 +139,68 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> f64 {
-        pairs(surface, candidates, rest)
-            .map(|pair| {
-                let y = pair.nodes.map(|n| x[n]);
-                let b = barrier(pair.kind(&y).squared_distance(&y), self.dhat_sq());
-                let mollifier = pair.eps_x.map_or(1.0, |eps| edge_edge_mollifier(&y, eps));
-                // A zero mollifier (parallel edges) times a zero barrier (beyond dhat) is 0.
-                if b == 0.0 {
-                    0.0
-                } else {
-                    self.kappa * mollifier * b
+        self.evaluate(surface, candidates, rest, x, None, None)
+    }
+
+    /// The potential at `x` (as [`Self::energy`]), with its gradient added to `gradient`
+    /// (three entries per node) when given and every pair's PSD-projected Hessian block
+    /// written by `hessian` when given (the blocks' nodes depend on the candidates only, so
+    /// a fixed candidate set has a fixed sparsity pattern). One parallel pass over the
+    /// pairs, each written into its own slot, the energies summed and the gradients
+    /// scattered in pair order: the same bits on any number of threads.
+    pub fn evaluate(
+        &self,
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+        x: &[Vec3],
+        gradient: Option<&mut [f64]>,
+        hessian: Option<HessianBlocks<'_>>,
+    ) -> f64 {
+        let pairs = Pairs {
+            surface,
+            candidates,
+            rest,
+        };
+        let derivatives = gradient.is_some() || hessian.is_some();
+        let (slots, write) = match hessian {
+            Some(h) => (h.slots.into_iter().map(Some).collect(), Some(h.write)),
+            None => ((0..candidates.len()).map(|_| None).collect(), None),
+        };
+        let shares = pairs.map_with(x, slots, |pair, y, slot| {
+            let energy = self.pair_energy(pair, y);
+            if !derivatives {
+                return (pair.nodes, energy, None);
+            }
+            let local = self.local(pair, y);
+            if let (Some(slot), Some(write)) = (slot, write) {
+                let block = local
+                    .as_ref()
+                    .map_or_else(SMatrix::zeros, |l| project_to_psd(&l.hessian));
+                write(&pair.nodes, &block, slot);
+            }
+            (pair.nodes, energy, local.map(|l| l.gradient))
+        });
+        if let Some(g) = gradient {
+            for (nodes, _, local) in &shares {
+                if let Some(local) = local {
+                    scatter(nodes, local, g);
                 }
-            })
-            .sum()
+            }
+        }
+        shares.iter().map(|s| s.1).sum()
+    }
+
+    /// The pair's potential at its nodes' positions `y`.
+    fn pair_energy(&self, pair: &Pair, y: &[Vec3; 4]) -> f64 {
+        let b = barrier(pair.kind(y).squared_distance(y), self.dhat_sq());
+        let mollifier = pair.eps_x.map_or(1.0, |eps| edge_edge_mollifier(y, eps));
+        // A zero mollifier (parallel edges) times a zero barrier (beyond dhat) is 0.
+        if b == 0.0 {
+            0.0
+        } else {
+            self.kappa * mollifier * b
+        }
     }
 
     /// The pair's potential with its gradient and (unprojected) Hessian, `None` beyond
@@ -153,58 +253,44 @@ impl BarrierPotential {
         x: &[Vec3],
         gradient: &mut [f64],
     ) {
-        for (nodes, local) in self.pair_gradients(surface, candidates, rest, x) {
-            for (i, &n) in nodes.iter().enumerate() {
-                for a in 0..3 {
-                    gradient[3 * n + a] += local[3 * i + a];
-                }
-            }
-        }
+        self.evaluate(surface, candidates, rest, x, Some(gradient), None);
     }
 
     /// Every candidate pair within `dhat` at `x` with the gradient of its potential on its
-    /// four nodes (12 coordinates, node-major).
-    pub fn pair_gradients<'a>(
-        &'a self,
-        surface: &'a ContactSurface,
-        candidates: &'a Candidates,
-        rest: &'a [Vec3],
-        x: &'a [Vec3],
-    ) -> impl Iterator<Item = ([usize; 4], SVector<f64, 12>)> + 'a {
-        pairs(surface, candidates, rest).filter_map(move |pair| {
-            let local = self.local(&pair, &pair.nodes.map(|n| x[n]))?;
-            Some((pair.nodes, local.gradient))
-        })
-    }
-
-    /// The four nodes of every candidate pair, in the order of [`Self::hessian_blocks`].
-    pub fn pair_nodes(
-        surface: &ContactSurface,
-        candidates: &Candidates,
-        rest: &[Vec3],
-    ) -> Vec<[usize; 4]> {
-        pairs(surface, candidates, rest).map(|p| p.nodes).collect()
-    }
-
-    /// The PSD-projected Hessian block of every candidate pair at `x`, in the candidates'
-    /// order (point-triangle pairs, then edge-edge pairs): the pair's four nodes and its
-    /// `12 x 12` block (zero beyond `dhat`). The nodes depend on the candidates only, so a
-    /// fixed candidate set has a fixed sparsity pattern.
-    pub fn hessian_blocks(
+    /// four nodes (12 coordinates, node-major), in the candidates' order.
+    pub fn pair_gradients(
         &self,
         surface: &ContactSurface,
         candidates: &Candidates,
         rest: &[Vec3],
         x: &[Vec3],
-    ) -> Vec<([usize; 4], SMatrix<f64, 12, 12>)> {
-        pairs(surface, candidates, rest)
-            .map(|pair| {
-                let block = self
-                    .local(&pair, &pair.nodes.map(|n| x[n]))
-                    .map_or_else(SMatrix::zeros, |local| project_to_psd(&local.hessian));
-                (pair.nodes, block)
+    ) -> Vec<([usize; 4], SVector<f64, 12>)> {
+        let pairs = Pairs {
+            surface,
+            candidates,
+            rest,
+        };
+        pairs
+            .map(x, |pair, y| {
+                Some((pair.nodes, self.local(pair, y)?.gradient))
             })
+            .into_iter()
+            .flatten()
             .collect()
+    }
+
+    /// The four nodes of every candidate pair, in the order of [`HessianBlocks::slots`].
+    pub fn pair_nodes(
+        surface: &ContactSurface,
+        candidates: &Candidates,
+        rest: &[Vec3],
+    ) -> Vec<[usize; 4]> {
+        let pairs = Pairs {
+            surface,
+            candidates,
+            rest,
+        };
+        (0..candidates.len()).map(|i| pairs.get(i).nodes).collect()
     }
 
     /// The Hessian of the potential at `x` as `(row, column, value)` triplets (duplicates
@@ -216,8 +302,20 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> Vec<(usize, usize, f64)> {
+        const LEN: usize = 144;
+        let mut values = vec![0.0; LEN * candidates.len()];
+        let copy = |_: &[usize; 4], block: &SMatrix<f64, 12, 12>, slot: &mut [f64]| {
+            slot.copy_from_slice(block.as_slice());
+        };
+        let blocks = HessianBlocks {
+            slots: values.chunks_mut(LEN).collect(),
+            write: &copy,
+        };
+        self.evaluate(surface, candidates, rest, x, None, Some(blocks));
+        let nodes = Self::pair_nodes(surface, candidates, rest);
         let mut triplets = Vec::new();
-        for (nodes, h) in self.hessian_blocks(surface, candidates, rest, x) {
+        for (nodes, h) in nodes.iter().zip(values.chunks(LEN)) {
+            let h = SMatrix::<f64, 12, 12>::from_column_slice(h);
             if h.iter().all(|&v| v == 0.0) {
                 continue;
             }
@@ -242,15 +340,19 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> Vec<PairForce> {
-        pairs(surface, candidates, rest)
-            .filter_map(|pair| {
-                let y = pair.nodes.map(|n| x[n]);
-                let kind = pair.kind(&y);
-                let d = kind.squared_distance(&y);
+        let pairs = Pairs {
+            surface,
+            candidates,
+            rest,
+        };
+        pairs
+            .map(x, |pair, y| {
+                let kind = pair.kind(y);
+                let d = kind.squared_distance(y);
                 if !(d > 0.0 && d < self.dhat_sq()) {
                     return None;
                 }
-                let mollifier = pair.eps_x.map_or(1.0, |eps| edge_edge_mollifier(&y, eps));
+                let mollifier = pair.eps_x.map_or(1.0, |eps| edge_edge_mollifier(y, eps));
                 let lambda = mollifier * normal_force(self.kappa, d, self.dhat_sq());
                 (lambda > 0.0).then_some(PairForce {
                     nodes: pair.nodes,
@@ -258,6 +360,8 @@ impl BarrierPotential {
                     lambda,
                 })
             })
+            .into_iter()
+            .flatten()
             .collect()
     }
 
@@ -269,11 +373,17 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> usize {
-        pairs(surface, candidates, rest)
-            .filter(|pair| {
-                let y = pair.nodes.map(|n| x[n]);
-                pair.kind(&y).squared_distance(&y) < self.dhat_sq()
+        let pairs = Pairs {
+            surface,
+            candidates,
+            rest,
+        };
+        pairs
+            .map(x, |pair, y| {
+                pair.kind(y).squared_distance(y) < self.dhat_sq()
             })
+            .into_iter()
+            .filter(|&within| within)
             .count()
     }
 
@@ -284,12 +394,24 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> f64 {
-        pairs(surface, candidates, rest)
-            .map(|pair| {
-                let y = pair.nodes.map(|n| x[n]);
-                pair.kind(&y).squared_distance(&y)
-            })
+        let pairs = Pairs {
+            surface,
+            candidates,
+            rest,
+        };
+        pairs
+            .map(x, |pair, y| pair.kind(y).squared_distance(y))
+            .into_iter()
             .fold(f64::INFINITY, f64::min)
             .sqrt()
+    }
+}
+
+/// Adds a pair's gradient `local` (12 coordinates, node-major) into `global`.
+fn scatter(nodes: &[usize; 4], local: &SVector<f64, 12>, global: &mut [f64]) {
+    for (i, &n) in nodes.iter().enumerate() {
+        for a in 0..3 {
+            global[3 * n + a] += local[3 * i + a];
+        }
     }
 }

@@ -30,6 +30,13 @@ impl PairRows {
         block_pattern(&self.free_nodes(nodes)).collect()
     }
 
+    /// The number of entries of the pair's block over its free nodes (what
+    /// [`Self::copy_block`] writes).
+    pub fn block_len(&self, nodes: &[usize; 4]) -> usize {
+        let free = nodes.iter().filter(|&&v| v < self.num_nodes).count();
+        9 * free * free
+    }
+
     /// Adds the pair's gradient `local` (12 coordinates, node-major) into `global` over its
     /// free nodes.
     pub fn scatter(&self, nodes: &[usize; 4], local: &[f64], global: &mut [f64]) {

@@ -21,7 +21,7 @@ mod step_limit;
 use super::pair_rows::PairRows;
 use super::surface_friction::{FrictionLag, SurfaceFriction};
 use super::EnergyTerm;
-use crate::contact::{BarrierPotential, StiffnessBounds};
+use crate::contact::{BarrierPotential, HessianBlocks, StiffnessBounds};
 use crate::error::SolverError;
 use crate::problem::mesh_obstacle::MeshObstacle;
 use crate::problem::schedule::LoadLevel;
@@ -29,7 +29,7 @@ use isochor_mesh::contact::{
     contact_candidates, intersecting_triangles, Candidates, CcdSettings, ContactSurface, PairFilter,
 };
 use isochor_mesh::Vec3;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 use rigid::RigidSurfaces;
 use std::sync::RwLock;
 
@@ -330,7 +330,6 @@ impl SurfaceContact {
         let full = self.rigid.extend(x);
         self.potential()
             .pair_gradients(&self.surface, &self.candidates(&full), &self.rest, &full)
-            .collect()
     }
 
     /// From pairs with the gradients of their potentials: the force each meshed obstacle
@@ -427,27 +426,39 @@ impl EnergyTerm for SurfaceContact {
             own = self.candidates(&x);
             &own
         };
-        let energy = potential.energy(&self.surface, candidates, &self.rest, &x);
-        if let Some(g) = gradient {
-            if self.rigid.is_empty() {
-                potential.add_gradient(&self.surface, candidates, &self.rest, &x, g);
-            } else {
+        // Each pair's block goes straight into its part of the pattern's values.
+        let rows = self.rows();
+        let write = |nodes: &[usize; 4], block: &SMatrix<f64, 12, 12>, slot: &mut [f64]| {
+            rows.copy_block(nodes, block, slot);
+        };
+        let blocks = hessian.map(|mut h| {
+            let nodes = BarrierPotential::pair_nodes(&self.surface, candidates, &self.rest);
+            let mut slots = Vec::with_capacity(nodes.len());
+            for n in &nodes {
+                let (slot, tail) = h.split_at_mut(rows.block_len(n));
+                slots.push(slot);
+                h = tail;
+            }
+            HessianBlocks {
+                slots,
+                write: &write,
+            }
+        });
+        let evaluate = |g: Option<&mut [f64]>| {
+            potential.evaluate(&self.surface, candidates, &self.rest, &x, g, blocks)
+        };
+        let energy = match gradient {
+            Some(g) if !self.rigid.is_empty() => {
                 // The obstacles' entries are dropped: they are no degrees of freedom.
                 let mut full = vec![0.0; 3 * x.len()];
-                potential.add_gradient(&self.surface, candidates, &self.rest, &x, &mut full);
+                let energy = evaluate(Some(&mut full));
                 for (gi, fi) in g.iter_mut().zip(&full[..3 * body.len()]) {
                     *gi += fi;
                 }
+                energy
             }
-        }
-        if let Some(h) = hessian {
-            let blocks = potential.hessian_blocks(&self.surface, candidates, &self.rest, &x);
-            let rows = self.rows();
-            let mut at = 0;
-            for (nodes, block) in &blocks {
-                at += rows.copy_block(nodes, block, &mut h[at..]);
-            }
-        }
+            g => evaluate(g),
+        };
         Ok(energy)
     }
 

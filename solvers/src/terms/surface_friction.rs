@@ -23,6 +23,7 @@ use crate::problem::friction::SurfaceFrictionSpec;
 use crate::problem::schedule::LoadLevel;
 use isochor_mesh::Vec3;
 use nalgebra::SVector;
+use rayon::prelude::*;
 use std::sync::{RwLock, RwLockReadGuard};
 
 /// What the barrier hands friction at a lagged state
@@ -175,23 +176,52 @@ impl EnergyTerm for SurfaceFriction {
         &self,
         x: &[Vec3],
         _level: &LoadLevel,
-        mut gradient: Option<&mut [f64]>,
-        mut hessian: Option<&mut [f64]>,
+        gradient: Option<&mut [f64]>,
+        hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         let lagged = self.read();
         let rows = lagged.rows();
-        let mut energy = 0.0;
-        let mut at = 0;
-        for (nodes, pair) in &lagged.pairs {
-            let d = pair.derivatives(&lagged.motion(nodes, x));
-            energy += d.value;
-            if let Some(g) = gradient.as_deref_mut() {
-                rows.scatter(nodes, d.gradient.as_slice(), g);
+        // Each pair's values in parallel (rayon), summed and scattered in pair order: the
+        // same bits on any number of threads.
+        let energy: f64 = if gradient.is_none() && hessian.is_none() {
+            let energies: Vec<f64> = lagged
+                .pairs
+                .par_iter()
+                .map(|(nodes, pair)| pair.potential(&lagged.motion(nodes, x)))
+                .collect();
+            energies.iter().sum()
+        } else {
+            // Each pair's slot of the Hessian values, in pair order.
+            let mut slots: Vec<Option<&mut [f64]>> = Vec::with_capacity(lagged.pairs.len());
+            match hessian {
+                Some(mut h) => {
+                    for (nodes, _) in &lagged.pairs {
+                        let (slot, tail) = h.split_at_mut(rows.block_len(nodes));
+                        slots.push(Some(slot));
+                        h = tail;
+                    }
+                }
+                None => slots.resize_with(lagged.pairs.len(), || None),
             }
-            if let Some(h) = hessian.as_deref_mut() {
-                at += rows.copy_block(nodes, &d.hessian, &mut h[at..]);
+            let shares: Vec<(f64, SVector<f64, 12>)> = lagged
+                .pairs
+                .par_iter()
+                .zip(slots)
+                .map(|((nodes, pair), slot)| {
+                    let d = pair.derivatives(&lagged.motion(nodes, x));
+                    if let Some(slot) = slot {
+                        rows.copy_block(nodes, &d.hessian, slot);
+                    }
+                    (d.value, d.gradient)
+                })
+                .collect();
+            if let Some(g) = gradient {
+                for ((nodes, _), (_, local)) in lagged.pairs.iter().zip(&shares) {
+                    rows.scatter(nodes, local.as_slice(), g);
+                }
             }
-        }
+            shares.iter().map(|s| s.0).sum()
+        };
         if !energy.is_finite() {
             return Err(SolverError::NonFinite("the friction energy"));
         }
