@@ -410,6 +410,14 @@ const CASES: &[Case] = &[
         bad: "metis",
     },
     Case {
+        key: "jacobian",
+        scene: STATIC,
+        setup: &[],
+        value: "modified",
+        reached: |_, b| b.settings.jacobian == isochor_solvers::Jacobian::Modified,
+        bad: "bfgs",
+    },
+    Case {
         key: "linear_preconditioner",
         scene: STATIC,
         setup: &[],

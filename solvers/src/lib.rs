@@ -142,7 +142,7 @@ pub use problem::obstacle::{Obstacle, Shape};
 pub use problem::schedule::{Curve, LoadLevel};
 pub use problem::{Problem, Region};
 pub use settings::{
-    IterativeSettings, LinearSolver, PreconditionerKind, Settings, VolumeProjection,
+    IterativeSettings, Jacobian, LinearSolver, PreconditionerKind, Settings, VolumeProjection,
     AUTO_DIRECT_UNKNOWNS,
 };
 pub use simulation::{

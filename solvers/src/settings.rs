@@ -76,6 +76,23 @@ pub enum PreconditionerKind {
     Multigrid,
 }
 
+/// Which matrix a Newton iteration solves with (the direct linear solver; the iterative one
+/// always builds its preconditioner afresh).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Jacobian {
+    /// The Newton matrix at the iterate, assembled and factorized every iteration:
+    /// quadratic convergence.
+    #[default]
+    Full,
+    /// Modified Newton: within a step (after its first iteration, with no prescribed motion
+    /// left), the last factorization is reused with the residual at the iterate alone, as
+    /// long as a full step along that direction halves the residual norm (the saddle-point
+    /// merit, or the force residual with sufficient energy decrease); otherwise the
+    /// iteration is redone with a fresh matrix (a reformation). Linear convergence with
+    /// fewer assemblies and factorizations; the same solution to the tolerances.
+    Modified,
+}
+
 /// Limits and tolerances of the nonlinear solvers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
@@ -99,6 +116,9 @@ pub struct Settings {
     pub linear: LinearSolver,
     /// Fill-reducing ordering of the direct factorizations (`K` and the KKT matrix).
     pub ordering: Ordering,
+    /// Whether each Newton iteration factorizes a fresh matrix (the default) or reuses the
+    /// last factorization while it converges fast enough.
+    pub jacobian: Jacobian,
     /// Largest penetration of a vertex into an obstacle accepted at convergence, relative to
     /// the diagonal of the mesh's rest bounding box.
     pub contact_tolerance: f64,
@@ -127,6 +147,7 @@ impl Default for Settings {
             project_hessians: false,
             linear: LinearSolver::Direct,
             ordering: Ordering::Auto,
+            jacobian: Jacobian::Full,
             contact_tolerance: 1e-6,
             max_contact_iterations: 30,
             accept_unconverged: false,

@@ -21,6 +21,7 @@ mod incline;
 mod locking;
 mod mesh_obstacle_friction;
 mod mesh_obstacle_term;
+mod modified_newton;
 mod newton;
 mod orderings;
 mod quadratic;

@@ -47,9 +47,9 @@ pub use material::{
 };
 pub use mesh::{Generated, GroupSpec, MeshSpec, Surface};
 pub use names::{
-    ComponentName, ElementName, EnergyName, KappaName, LengthUnit, LinearName, MethodName,
-    ModelName, OrderingName, PointsName, PreconditionerName, PreviewField, Reduce, UnknownName,
-    VtuEncodingName, ZonalEnergyName, ZoneKind,
+    ComponentName, ElementName, EnergyName, JacobianName, KappaName, LengthUnit, LinearName,
+    MethodName, ModelName, OrderingName, PointsName, PreconditionerName, PreviewField, Reduce,
+    UnknownName, VtuEncodingName, ZonalEnergyName, ZoneKind,
 };
 pub use obstacles::ObstacleSpec;
 pub use output::OutputSpec;

@@ -264,6 +264,16 @@ names! {
 }
 
 names! {
+    /// `solver.jacobian`: the matrix of each Newton iteration.
+    pub enum JacobianName {
+        /// Assembled and factorized every iteration.
+        Full = "full",
+        /// The last factorization reused while the residual halves (modified Newton).
+        Modified = "modified",
+    }
+}
+
+names! {
     /// `solver.ordering`: the fill-reducing ordering.
     pub enum OrderingName {
         /// Approximate minimum degree.

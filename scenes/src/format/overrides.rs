@@ -57,6 +57,7 @@ pub const FLAT_KEYS: &[(&str, &str)] = &[
     ("linear_tolerance", "solver.linear_tolerance"),
     ("linear_max_iterations", "solver.linear_max_iterations"),
     ("ordering", "solver.ordering"),
+    ("jacobian", "solver.jacobian"),
     ("linear_preconditioner", "solver.linear_preconditioner"),
     ("zones", "zones.kind"),
     ("k", "zones.k"),

@@ -1,6 +1,6 @@
 //! `[solver]`: Newton limits, tolerances and the linear solver.
 
-use super::names::{LinearName, OrderingName, PreconditionerName};
+use super::names::{JacobianName, LinearName, OrderingName, PreconditionerName};
 use serde::{Deserialize, Serialize};
 
 /// Newton limits and tolerances (defaults: the solver's).
@@ -30,6 +30,9 @@ pub struct SolverSpec {
     /// Fill-reducing ordering of the direct factorizations: `amd`, `nested-dissection`
     /// (METIS) or `auto` (the default: AMD on small systems, nested dissection on large).
     pub ordering: Option<OrderingName>,
+    /// `full` (default: a fresh Newton matrix every iteration) or `modified` (the last
+    /// factorization reused while the residual halves, a fresh one otherwise).
+    pub jacobian: Option<JacobianName>,
     /// Preconditioner of the iterative linear solver's stiffness block:
     /// `incomplete-cholesky` (default) or `jacobi`.
     pub linear_preconditioner: Option<PreconditionerName>,

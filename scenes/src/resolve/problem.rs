@@ -4,16 +4,16 @@
 use super::selections::Selections;
 use crate::error::SceneError;
 use crate::format::{
-    CurveSpec, LinearName, MotionSpec, ObstacleSpec, OrderingName, PlacementSpec,
+    CurveSpec, JacobianName, LinearName, MotionSpec, ObstacleSpec, OrderingName, PlacementSpec,
     PreconditionerName, Scene, SolverSpec, SteppingSpec, DEFAULT_VOLUME_RECOVERY,
 };
 use isochor_mesh::io::read_surface;
 use isochor_mesh::Vec3;
 use isochor_solvers::linear::Ordering;
 use isochor_solvers::{
-    Adaptive, AxisRotation, Curve, Dirichlet, IterativeSettings, LinearSolver, Load, MeshObstacle,
-    Motion, Obstacle, PreconditionerKind, ScheduledLoad, Settings, Shape, StepControl, Stepping,
-    VolumeProjection,
+    Adaptive, AxisRotation, Curve, Dirichlet, IterativeSettings, Jacobian, LinearSolver, Load,
+    MeshObstacle, Motion, Obstacle, PreconditionerKind, ScheduledLoad, Settings, Shape,
+    StepControl, Stepping, VolumeProjection,
 };
 
 /// The Dirichlet conditions on their selections' nodes.
@@ -317,6 +317,12 @@ pub fn settings(spec: &SolverSpec) -> Settings {
     }
     if let Some(v) = spec.max_contact_iterations {
         s.max_contact_iterations = v;
+    }
+    if let Some(v) = spec.jacobian {
+        s.jacobian = match v {
+            JacobianName::Full => Jacobian::Full,
+            JacobianName::Modified => Jacobian::Modified,
+        };
     }
     if let Some(v) = spec.ordering {
         s.ordering = match v {

@@ -83,6 +83,7 @@ pub fn solve(
                 ..i
             }));
         report.timings += primal.timings;
+        report.factorizations += primal.factorizations;
         report.force_residual = primal.force_residual;
         let primal_converged = result?;
         constraints.values(x, &mut phi)?;

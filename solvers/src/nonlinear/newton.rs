@@ -13,7 +13,7 @@ use crate::nonlinear::forcing::Forcing;
 use crate::nonlinear::krylov::{solve_stiffness, StiffnessPreconditioner};
 use crate::nonlinear::report::{IterationReport, StepReport};
 use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
-use crate::settings::IterativeSettings;
+use crate::settings::{IterativeSettings, Jacobian};
 use faer::sparse::SparseColMat;
 use isochor_mesh::Vec3;
 use std::time::Instant;
@@ -34,6 +34,8 @@ enum Linear {
 #[derive(Debug)]
 pub struct Newton {
     linear: Linear,
+    /// Whether the next iteration may reuse the factorization ([`Jacobian::Modified`]).
+    reusable: bool,
 }
 
 impl Newton {
@@ -60,7 +62,10 @@ impl Newton {
                     .map_err(|e| SolverError::Linear(e.to_string()))?,
             )),
         };
-        Ok(Newton { linear })
+        Ok(Newton {
+            linear,
+            reusable: false,
+        })
     }
 
     /// The factorization of the latest Newton matrix (reused by the dual solver, eq. 41);
@@ -142,8 +147,76 @@ impl Newton {
         }
     }
 
-    /// Starts a new forcing-term sequence (a new load or time step).
+    /// One modified-Newton iteration from `x` with the last factorization: the gradient at
+    /// the iterate, the step it gives, taken whole if no surface pair crosses on the way, the
+    /// state is valid, the energy decreases sufficiently (Armijo) and the force residual
+    /// halves. `Some(true)`: `x` met the tolerances; `Some(false)`: the step was taken;
+    /// `None`: it was refused (the iteration is redone with a fresh matrix).
+    fn reuse(
+        &mut self,
+        system: &mut System<'_>,
+        x: &mut [Vec3],
+        target: &StepTarget,
+        report: &mut StepReport,
+    ) -> Result<Option<bool>, SolverError> {
+        let Linear::Direct(cholesky) = &mut self.linear else {
+            return Ok(None);
+        };
+        let dofs = &system.model.dofs;
+        let eval = system.energy(x, &target.level, true)?;
+        let mut rhs: Vec<f64> = dofs.gather(&eval.gradient).iter().map(|g| -g).collect();
+        let force = norm(&rhs);
+        report.force_residual = force;
+        if !force.is_finite() {
+            return Err(SolverError::NonFinite("the force residual"));
+        }
+        if force <= target.force_tolerance {
+            return Ok(Some(true));
+        }
+        let start = Instant::now();
+        cholesky
+            .solve_in_place(&mut rhs)
+            .map_err(|e| SolverError::Linear(e.to_string()))?;
+        report.timings.solve += start.elapsed();
+        let mut direction = vec![0.0; 3 * x.len()];
+        for (&dof, dx) in dofs.free().iter().zip(&rhs) {
+            direction[dof] = *dx;
+        }
+        let slope: f64 = eval
+            .gradient
+            .iter()
+            .zip(&direction)
+            .map(|(g, d)| g * d)
+            .sum();
+        let line_search = Instant::now();
+        let clear = system.max_step(x, &direction) == 1.0;
+        report.timings.ccd += line_search.elapsed();
+        let mut trial = x.to_vec();
+        add_scaled(&mut trial, &direction, 1.0);
+        let accepted = clear && system.is_valid(&trial) && {
+            let next = system.energy(&trial, &target.level, true)?;
+            next.energy <= eval.energy + ARMIJO * slope
+                && norm(&dofs.gather(&next.gradient)) <= 0.5 * force
+        };
+        report.timings.line_search += line_search.elapsed();
+        report.timings.assembly += system.take_assembly_time();
+        if !accepted {
+            return Ok(None);
+        }
+        x.copy_from_slice(&trial);
+        report.iterations.push(IterationReport {
+            force_residual: force,
+            step_length: 1.0,
+            reused: true,
+            ..IterationReport::default()
+        });
+        Ok(Some(false))
+    }
+
+    /// Starts a new load or time step: a new forcing-term sequence, and a fresh matrix at
+    /// its first iteration.
     pub fn restart_forcing(&mut self) {
+        self.reusable = false;
         if let Linear::Iterative(settings, forcing, preconditioner) = &mut self.linear {
             *forcing = Forcing::new(settings.tolerance);
             preconditioner.new_step();
@@ -167,8 +240,20 @@ impl Newton {
             if system.update_contact_pattern(x)? {
                 // New contact pairs: the pattern changed, so does the symbolic analysis.
                 let start = Instant::now();
-                self.linear = Newton::new(system)?.linear;
+                *self = Newton::new(system)?;
                 report.timings.setup += start.elapsed();
+            }
+            if self.reusable {
+                match self.reuse(system, x, target, report)? {
+                    Some(converged) => {
+                        if converged {
+                            report.converged = true;
+                            return Ok(true);
+                        }
+                        continue;
+                    }
+                    None => self.reusable = false,
+                }
             }
             let Linearized {
                 eval,
@@ -248,6 +333,12 @@ impl Newton {
             if alpha == 1.0 {
                 snap(x, &target.prescribed);
             }
+            // A full step is a sign of Newton's region, where the factorization may serve on.
+            // (Not in dual ascent, whose steps read the factorization at the iterate, eq. 41.)
+            self.reusable = settings.jacobian == Jacobian::Modified
+                && alpha == 1.0
+                && system.model.scheme != NonlinearScheme::Dual
+                && matches!(self.linear, Linear::Direct(_));
             report.iterations.push(IterationReport {
                 force_residual: force,
                 step_length: alpha,

@@ -23,6 +23,8 @@ pub struct IterationReport {
     pub regularization: f64,
     /// Krylov iterations of the iteration's linear solves (0 on the direct path).
     pub linear_iterations: usize,
+    /// Whether the iteration reused an earlier factorization ([`crate::Jacobian::Modified`]).
+    pub reused: bool,
 }
 
 /// Where the time of a step went.

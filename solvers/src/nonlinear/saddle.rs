@@ -22,7 +22,7 @@ use crate::nonlinear::target::{
     add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
 };
 use crate::problem::schedule::LoadLevel;
-use crate::settings::IterativeSettings;
+use crate::settings::{IterativeSettings, Jacobian};
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_mesh::Vec3;
 use nalgebra::{DMatrix, DVector};
@@ -101,6 +101,18 @@ pub struct SaddleNewton {
     compliance_entries: Vec<(usize, usize, f64)>,
     /// `(row, dof)` of the constraint Jacobian entries, fetched once.
     jacobian_pattern: Vec<(usize, usize)>,
+    /// Whether the next iteration may reuse the factorization ([`Jacobian::Modified`]).
+    reusable: bool,
+}
+
+/// How an iteration with the last factorization went.
+enum Reuse {
+    /// The iterate met the tolerances.
+    Converged,
+    /// The full step halved the residual and was taken.
+    Accepted,
+    /// It did not: the iteration is redone with a fresh matrix.
+    Refused,
 }
 
 fn linear_error(e: crate::linear::LinearError) -> SolverError {
@@ -189,6 +201,7 @@ impl SaddleNewton {
             compliance,
             compliance_entries,
             jacobian_pattern: constraints.jacobian_pattern(),
+            reusable: false,
         })
     }
 
@@ -300,12 +313,24 @@ impl SaddleNewton {
             state.forcing = Forcing::new(state.settings.tolerance);
             state.p_k.new_step();
         }
+        // Every step starts with a fresh matrix.
+        self.reusable = false;
         for _ in 0..settings.max_iterations {
             if system.update_contact_pattern(x)? {
                 // New contact pairs: the pattern changed, so does the symbolic analysis.
                 let start = Instant::now();
                 *self = SaddleNewton::new(system)?;
                 report.timings.setup += start.elapsed();
+            }
+            if self.reusable {
+                match self.reuse(system, (x, p), target, &merit, report)? {
+                    Reuse::Converged => {
+                        report.converged = true;
+                        return Ok(());
+                    }
+                    Reuse::Accepted => continue,
+                    Reuse::Refused => self.reusable = false,
+                }
             }
             let Linearized {
                 d_fixed,
@@ -431,6 +456,10 @@ impl SaddleNewton {
             if alpha == 1.0 {
                 snap(x, &target.prescribed);
             }
+            // A full step is a sign of Newton's region, where the factorization may serve on.
+            self.reusable = settings.jacobian == Jacobian::Modified
+                && alpha == 1.0
+                && !matches!(self.linear, Linear::Iterative(_));
             report.iterations.push(IterationReport {
                 force_residual: force,
                 constraint_residual: constraint,
@@ -442,6 +471,7 @@ impl SaddleNewton {
                     Linear::Iterative(state) => std::mem::take(&mut state.iterations),
                     _ => 0,
                 },
+                reused: false,
             });
         }
         if let Some(gap) = remaining_gap(x, target) {
@@ -456,6 +486,69 @@ impl SaddleNewton {
             force_residual: report.force_residual,
             constraint_residual: report.constraint_residual,
         })
+    }
+
+    /// One modified-Newton iteration from `(x, p)` with the last factorization: the residual
+    /// at the iterate, the step it gives, taken whole if no surface pair crosses on the way,
+    /// the state is valid and the merit falls to a quarter (the residual norm halves).
+    fn reuse(
+        &mut self,
+        system: &mut System<'_>,
+        (x, p): (&mut [Vec3], &mut [f64]),
+        target: &StepTarget,
+        merit: &dyn Fn(&[f64], &[f64]) -> f64,
+        report: &mut StepReport,
+    ) -> Result<Reuse, SolverError> {
+        let settings = system.settings;
+        let volumes = &system.model.row_volumes;
+        let (sigma, theta) = self.residuals(system, x, p, &target.level)?;
+        let sigma_f = system.model.dofs.gather(&sigma);
+        let force = norm(&sigma_f);
+        let scaled: Vec<f64> = theta.iter().zip(volumes).map(|(t, v)| t / v).collect();
+        let constraint = max_abs(&scaled);
+        report.force_residual = force;
+        report.constraint_residual = constraint;
+        report.volume_error = volume_error(&theta, volumes);
+        if !(force.is_finite() && constraint.is_finite()) {
+            return Err(SolverError::NonFinite("the saddle-point residual"));
+        }
+        if force <= target.force_tolerance && constraint <= settings.constraint_tolerance {
+            return Ok(Reuse::Converged);
+        }
+        let merit0 = merit(&sigma_f, &theta);
+        let rhs_x = sigma_f.iter().map(|v| -v).collect();
+        let rhs_p = theta.iter().map(|v| -v).collect();
+        let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
+        let mut direction = vec![0.0; 3 * x.len()];
+        for (&dof, v) in system.model.dofs.free().iter().zip(&dx) {
+            direction[dof] = *v;
+        }
+        let line_search = Instant::now();
+        let clear = system.max_step(x, &direction) == 1.0;
+        report.timings.ccd += line_search.elapsed();
+        let mut trial_x = x.to_vec();
+        add_scaled(&mut trial_x, &direction, 1.0);
+        let trial_p: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + b).collect();
+        let accepted = clear && system.is_valid(&trial_x) && {
+            let (s, t) = self.residuals(system, &trial_x, &trial_p, &target.level)?;
+            merit(&system.model.dofs.gather(&s), &t) <= 0.25 * merit0
+        };
+        report.timings.line_search += line_search.elapsed();
+        report.timings.assembly += system.take_assembly_time();
+        if !accepted {
+            return Ok(Reuse::Refused);
+        }
+        x.copy_from_slice(&trial_x);
+        p.copy_from_slice(&trial_p);
+        report.iterations.push(IterationReport {
+            force_residual: force,
+            constraint_residual: constraint,
+            volume_error: report.volume_error,
+            step_length: 1.0,
+            reused: true,
+            ..IterationReport::default()
+        });
+        Ok(Reuse::Accepted)
     }
 
     /// Factorizes the KKT matrix (shifting `K` until the inertia is right); returns the
