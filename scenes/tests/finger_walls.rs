@@ -102,8 +102,9 @@ fn print_table(touches: &[Touch]) {
     }
 }
 
-/// The variant at its default size (res 2, V/V0 to its full ratio): the table of
-/// docs/validation.md. Run in release with `--ignored --nocapture` (minutes).
+/// The variant at its default size (res 2, 11,952 tets, 34 steps to V/V0 = 8), printing
+/// the table of its steps. Run in release with `--ignored --nocapture`: more than 19 min of
+/// CPU (not finished when measured on the shared machine, 2026-12-03).
 #[test]
 #[ignore]
 fn the_chambers_walls_press_onto_each_other_at_default_size() {
