@@ -103,7 +103,7 @@ fn print_table(touches: &[Touch]) {
 }
 
 /// The variant at its default size (res 2, 11,952 tets, 34 steps to V/V0 = 8), printing
-/// the table of its steps. Run in release with `--ignored --nocapture`: more than 19 min of
+/// the table of its steps. Run in release with `--ignored --nocapture`: more than 34 min of
 /// CPU (not finished when measured on the shared machine, 2026-12-03).
 #[test]
 #[ignore]
