@@ -15,6 +15,7 @@ mod contact;
 mod contact_scenes;
 mod explicit_and_interrupt;
 mod finger_volume;
+mod finger_walls;
 mod frames;
 mod mesh_obstacles;
 mod outputs;
