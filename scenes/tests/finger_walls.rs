@@ -102,13 +102,13 @@ fn print_table(touches: &[Touch]) {
     }
 }
 
-/// The variant at its default size (res 2, 11,952 tets, 34 steps to V/V0 = 8), printing
+/// The variant at the scene's size (res 2, 11,952 tets, 34 steps to V/V0 = 8), printing
 /// the table of its steps. Run in release with `--ignored --nocapture`: more than 34 min of
 /// CPU (not finished when measured on the shared machine, 2026-12-03).
 #[test]
 #[ignore]
-fn the_chambers_walls_press_onto_each_other_at_default_size() {
-    let (touches, iterations, wall, error) = run_walls(&[]);
+fn the_chambers_walls_press_onto_each_other_at_the_scenes_size() {
+    let (touches, iterations, wall, error) = run_walls(&["res=2", "steps=34"]);
     print_table(&touches);
     eprintln!(
         "{} steps, {iterations} Newton iterations, {wall:.1} s; {error:?}",
@@ -119,7 +119,7 @@ fn the_chambers_walls_press_onto_each_other_at_default_size() {
     assert!(touches.last().unwrap().wall_force > 0.0);
 }
 
-/// The variant on the coarse finger (res 1, 1,494 tets) in 8 steps to V/V0 = 8: pairs come
+/// The variant at its own size, the coarse finger (res 1, 1,494 tets) in 8 steps to V/V0 = 8: pairs come
 /// within `dhat` from V/V0 = 4.5 (the walls closing onto the gaps' floors), the walls across
 /// the gaps touch from 7.1 and press with 6.1e-4 N at 8 (closest primitives 0.012 mm, 66
 /// pairs); no two triangles intersect. `--ignored`: 114 Newton iterations, 60 s of wall time
@@ -128,7 +128,7 @@ fn the_chambers_walls_press_onto_each_other_at_default_size() {
 #[test]
 #[ignore]
 fn the_coarse_fingers_walls_press_onto_each_other() {
-    let (touches, iterations, wall, error) = run_walls(&["res=1", "steps=8"]);
+    let (touches, iterations, wall, error) = run_walls(&[]);
     print_table(&touches);
     eprintln!("{iterations} Newton iterations, {wall:.1} s");
     assert!(error.is_none(), "{error:?}");
