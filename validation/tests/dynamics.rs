@@ -12,10 +12,8 @@
 //!   the motion (an inertia that forgets the velocity) would also "converge at first order",
 //!   to rest.
 
-use isochor_mesh::{generate::box_grid, Vec3};
-use isochor_solvers::{
-    Dirichlet, Load, Material, Method, Motion, Problem, Settings, Simulation, State, Stepping,
-};
+use isochor_mesh::Vec3;
+use isochor_solvers::{Method, Problem, Settings, Simulation, State, Stepping};
 use nalgebra::DVector;
 
 /// The time at which errors are measured: about a quarter of the first bending period
@@ -48,26 +46,7 @@ const ORDER_BAND: (f64, f64) = (0.8, 1.2);
 /// The cantilever of the locking study at `res` = 1 (4 x 1 x 1 cells, 24 tets), clamped at
 /// `x = 0`, `nu` = 0.45, under gravity from rest.
 fn cantilever(method: Method) -> Problem {
-    let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [4, 1, 1]).expect("beam");
-    let clamped = (0..mesh.num_vertices())
-        .filter(|&v| mesh.positions()[v].x.abs() < 1e-12)
-        .collect();
-    Problem {
-        dirichlet: vec![Dirichlet {
-            nodes: clamped,
-            axes: [true; 3],
-            motion: Motion::Fixed,
-            curve: None,
-        }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
-        method,
-        material: Material::from_young_poisson(266e3, 0.45, DENSITY).expect("material"),
-        regions: Vec::new(),
-        zones: None,
-        obstacles: Vec::new(),
-        mesh: mesh.into(),
-        cloths: Vec::new(),
-    }
+    crate::common::cantilever([4, 1, 1], false, method)
 }
 
 /// What a run leaves at `T_END`: the total energy (zero in the exact motion), the largest

@@ -2,48 +2,20 @@
 //! reuses factorizations ends on the state full Newton ends on, to the solver's tolerances,
 //! with fewer factorizations than iterations; full Newton factorizes at every iteration.
 
-use isochor_mesh::element::ElementMesh;
-use isochor_mesh::{generate::box_grid, Vec3};
-use isochor_solvers::{
-    Dirichlet, Jacobian, Load, Material, Method, Motion, Problem, RunSummary, Settings, Simulation,
-    Stepping,
-};
+use crate::common::cantilever;
+use isochor_mesh::Vec3;
+use isochor_solvers::{Jacobian, Method, RunSummary, Settings, Simulation, Stepping};
 
-/// The cantilever of `newton.rs` on 4 x 1 x 1 cells, nu = 0.45, of 4- or 10-node tets.
-fn cantilever(method: Method, quadratic: bool) -> Problem {
-    let tets = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [4, 1, 1]).expect("beam");
-    let mesh = if quadratic {
-        ElementMesh::quadratic(tets)
-    } else {
-        ElementMesh::linear(tets)
-    };
-    let clamped = (0..mesh.num_nodes())
-        .filter(|&n| mesh.nodes()[n].x.abs() < 1e-12)
-        .collect();
-    Problem {
-        dirichlet: vec![Dirichlet {
-            nodes: clamped,
-            axes: [true; 3],
-            motion: Motion::Fixed,
-            curve: None,
-        }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
-        method,
-        material: Material::from_young_poisson(266e3, 0.45, 1070.0).expect("material"),
-        regions: Vec::new(),
-        zones: None,
-        obstacles: Vec::new(),
-        mesh,
-        cloths: Vec::new(),
-    }
-}
+/// The beam of 4 x 1 x 1 cells.
+const CELLS: [usize; 3] = [4, 1, 1];
 
 fn run(method: Method, quadratic: bool, jacobian: Jacobian) -> RunSummary {
     let settings = Settings {
         jacobian,
         ..Settings::default()
     };
-    let mut sim = Simulation::new(cantilever(method, quadratic), settings).expect("simulation");
+    let mut sim =
+        Simulation::new(cantilever(CELLS, quadratic, method), settings).expect("simulation");
     sim.run(Stepping::quasi_static(2), |_| {})
         .unwrap_or_else(|e| panic!("{} ({jacobian:?}): {}", method.name(), e.error))
 }
@@ -79,7 +51,7 @@ fn modified_newton_reaches_full_newtons_state_on_every_method() {
             );
             let full = run(method, quadratic, Jacobian::Full);
             let modified = run(method, quadratic, Jacobian::Modified);
-            let rest = cantilever(method, quadratic).mesh.nodes().to_vec();
+            let rest = cantilever(CELLS, quadratic, method).mesh.nodes().to_vec();
             let displacement = |s: &RunSummary| -> Vec<Vec3> {
                 s.final_state
                     .positions

@@ -123,23 +123,7 @@ fn patch(method: Method) -> Problem {
 /// The cantilever of the locking study (0.2 x 0.05 x 0.05 m, 8 x 2 x 2 cells, 384 tets),
 /// clamped at `x = 0`, bending under its own weight, at `nu = 0.45`.
 fn cantilever(method: Method) -> Problem {
-    let mesh = box_grid(Vec3::zeros(), Vec3::new(0.2, 0.05, 0.05), [8, 2, 2]).expect("beam");
-    Problem {
-        dirichlet: vec![Dirichlet {
-            nodes: plane(&mesh, 0, 0.0),
-            axes: [true; 3],
-            motion: Motion::Fixed,
-            curve: None,
-        }],
-        loads: vec![Load::Gravity(Vec3::new(0.0, -9.8, 0.0)).into()],
-        method,
-        material: Material::from_young_poisson(266e3, 0.45, 1070.0).expect("material"),
-        regions: Vec::new(),
-        zones: None,
-        obstacles: Vec::new(),
-        mesh: mesh.into(),
-        cloths: Vec::new(),
-    }
+    crate::common::cantilever([8, 2, 2], false, method)
 }
 
 /// The stress balance of the homogeneous patch state `F = diag(s, t, t)` (with the pressure

@@ -96,4 +96,12 @@ impl Dofs {
     pub fn gather(&self, full: &[f64]) -> Vec<f64> {
         self.free.iter().map(|&d| full[d]).collect()
     }
+
+    /// Writes `free` (one value per free DOF) into the free entries of the full vector
+    /// `full`, leaving the prescribed entries as they are.
+    pub fn scatter(&self, free: &[f64], full: &mut [f64]) {
+        for (&d, &v) in self.free.iter().zip(free) {
+            full[d] = v;
+        }
+    }
 }

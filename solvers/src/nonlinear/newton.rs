@@ -179,9 +179,7 @@ impl Newton {
             .map_err(|e| SolverError::Linear(e.to_string()))?;
         report.timings.solve += start.elapsed();
         let mut direction = vec![0.0; 3 * x.len()];
-        for (&dof, dx) in dofs.free().iter().zip(&rhs) {
-            direction[dof] = *dx;
-        }
+        dofs.scatter(&rhs, &mut direction);
         let slope: f64 = eval
             .gradient
             .iter()
@@ -283,9 +281,7 @@ impl Newton {
             )?;
 
             let mut direction = d_fixed.clone();
-            for (&dof, dx) in dofs.free().iter().zip(&rhs) {
-                direction[dof] = *dx;
-            }
+            dofs.scatter(&rhs, &mut direction);
             let slope: f64 = eval
                 .gradient
                 .iter()

@@ -371,9 +371,7 @@ impl SaddleNewton {
             let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
 
             let mut direction = d_fixed.clone();
-            for (&dof, v) in system.model.dofs.free().iter().zip(&dx) {
-                direction[dof] = *v;
-            }
+            system.model.dofs.scatter(&dx, &mut direction);
             let merit0 = merit(&sigma_f, &theta);
             let acceptable = |m: f64, alpha: f64| {
                 m.is_finite()
@@ -413,9 +411,7 @@ impl SaddleNewton {
                         let (cx, cp) = self.solve_factorized(f, h, report)?;
                         let mut corrected_x = trial_x.clone();
                         let mut full = vec![0.0; n_dofs];
-                        for (&dof, v) in system.model.dofs.free().iter().zip(&cx) {
-                            full[dof] = *v;
-                        }
+                        system.model.dofs.scatter(&cx, &mut full);
                         add_scaled(&mut corrected_x, &full, 1.0);
                         let corrected_p: Vec<f64> =
                             trial_p.iter().zip(&cp).map(|(a, b)| a + b).collect();
@@ -520,9 +516,7 @@ impl SaddleNewton {
         let rhs_p = theta.iter().map(|v| -v).collect();
         let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
         let mut direction = vec![0.0; 3 * x.len()];
-        for (&dof, v) in system.model.dofs.free().iter().zip(&dx) {
-            direction[dof] = *v;
-        }
+        system.model.dofs.scatter(&dx, &mut direction);
         let line_search = Instant::now();
         let clear = system.max_step(x, &direction) == 1.0;
         report.timings.ccd += line_search.elapsed();

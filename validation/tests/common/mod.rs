@@ -4,6 +4,9 @@
 
 #![allow(dead_code)]
 
+mod cantilever;
+pub use cantilever::cantilever;
+
 use isochor_scenes::{load_scene, run_scene, Override, RunOptions, RunResult};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
