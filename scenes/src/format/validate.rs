@@ -170,8 +170,14 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
 
 /// The methods a scene with a cloth body may use: those whose unknowns a node that no tet
 /// uses does not make singular (a band on a cylinder fails to converge with the others:
-/// mixed-p1's vertex pressures and zonal's zone Schur complement are singular there).
-pub const CLOTH_METHODS: [Method; 3] = [Method::Standard, Method::MixedP0, Method::MixedP0Log];
+/// the vertex pressures of mixed-p1, its log form, condensed and dual have an empty row at
+/// each cloth node).
+pub const CLOTH_METHODS: [Method; 4] = [
+    Method::Standard,
+    Method::MixedP0,
+    Method::MixedP0Log,
+    Method::Zonal,
+];
 
 /// Cloth bodies (`kind = "cloth"`): a `band` or a surface file (`.obj`, `.stl`, `.msh`) for
 /// mesh, the fabric's keys known and in range, a finite positive `rest_scale`, a solid body
