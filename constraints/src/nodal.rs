@@ -29,7 +29,7 @@ pub enum NodalCompliance {
 /// `m_e = V_e Phi(J_e)`.
 ///
 /// Row `j` is vertex `j` of the mesh (node `j`: corners come first); a vertex in no element
-/// gives an empty row `0 = 0` (clean such meshes before solving with zero compliance). The
+/// (a cloth's node) gives the row `-p_j = 0` through a unit compliance, its pressure zero. The
 /// Jacobian pattern holds `4 x 3n` entries per element of `n` nodes: for each of its 4
 /// corners (in the element's order) a row over the element's DOFs. The geometric stiffness
 /// of element `e` is `sum_q W_q p(xi_q) d^2 Phi(J_q)/dx^2`, with `p = sum_j p_j L_j` the
@@ -206,8 +206,18 @@ impl ConstraintSet for NodalConstraints {
         self.measure() == Measure::Linear
     }
 
+    /// Eq. 18, plus a unit diagonal on the empty rows of vertices in no element (a cloth's
+    /// nodes beside a body): their rows read `-p_j = 0`, which keeps those pressures at zero
+    /// instead of leaving the saddle-point matrix singular.
     fn compliance(&self) -> Compliance {
         let scale = &self.inverse_kappa;
+        let mut used = vec![false; self.num_constraints()];
+        for e in 0..self.elements.len() {
+            for v in self.elements.corners(e) {
+                used[v] = true;
+            }
+        }
+        let empty = || (0..used.len()).filter(|&v| !used[v]);
         match self.compliance {
             NodalCompliance::Lumped => {
                 let mut diagonal = vec![0.0; self.num_constraints()];
@@ -216,6 +226,9 @@ impl ConstraintSet for NodalConstraints {
                     for (v, row) in self.elements.corners(e).into_iter().zip(products) {
                         diagonal[v] += row.iter().sum::<f64>() * inverse_kappa;
                     }
+                }
+                for v in empty() {
+                    diagonal[v] = 1.0;
                 }
                 Compliance::Diagonal(diagonal)
             }
@@ -228,6 +241,7 @@ impl ConstraintSet for NodalConstraints {
                             (0..4).map(move |b| (t[a], t[b], products[a][b] * scale[e]))
                         })
                     })
+                    .chain(empty().map(|v| (v, v, 1.0)))
                     .collect(),
             ),
         }
@@ -269,6 +283,28 @@ mod tests {
             Compliance::Sparse(t) => t.iter().for_each(|&(i, j, v)| m[i][j] += v),
         }
         m
+    }
+
+    /// A vertex in no element (a cloth's node) gets the row `-p = 0`: unit compliance on
+    /// its diagonal, nothing else, with either integration, even when `C = 0` elsewhere.
+    #[test]
+    fn a_vertex_in_no_element_has_unit_compliance() {
+        let two = two_tets();
+        let mut positions = two.positions().to_vec();
+        positions.push(Vec3::new(5.0, 5.0, 5.0));
+        let mesh = TetMesh::new(positions, two.tets().to_vec()).unwrap();
+        for kind in [NodalCompliance::Lumped, NodalCompliance::Consistent] {
+            let c = NodalConstraints::new(&mesh, Measure::Linear, f64::INFINITY, kind)
+                .unwrap()
+                .compliance();
+            let m = dense(&c, 6);
+            for (i, row) in m.iter().enumerate() {
+                for (j, &entry) in row.iter().enumerate() {
+                    let expected = if i == 5 && j == 5 { 1.0 } else { 0.0 };
+                    assert_eq!(entry, expected, "{kind:?} ({i}, {j})");
+                }
+            }
+        }
     }
 
     #[test]

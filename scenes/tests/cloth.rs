@@ -6,6 +6,7 @@
 
 use isochor_scenes::resolve::build;
 use isochor_scenes::{run_scene, RunOptions, Scene, SceneError};
+use isochor_solvers::Method;
 use std::f64::consts::PI;
 
 /// The cylinder's radius `R` (m); the band is placed at `1.02 R`, 5 cm wide.
@@ -88,13 +89,15 @@ fn parse(text: &str) -> Result<Scene, SceneError> {
     Scene::from_toml_str(text, "test scene")
 }
 
-/// At 2 cells across (26 around, 104 triangles) the band settles on the cylinder with each
-/// method that takes a cloth: its middle loop, a polygon of 26 sides, is the one inscribed in
+/// At 2 cells across (26 around, 104 triangles) the band settles on the cylinder with every
+/// method but `zonal` (whose zone needs a free unknown: the solid here is clamped whole; see
+/// the next test): its middle loop, a polygon of 26 sides, is the one inscribed in
 /// the circle of radius `R` to 1e-5 (the library test's tolerance on the mean radius), though
 /// placed at `1.02 R`.
 #[test]
 fn a_band_settles_on_a_rigid_cylinder() {
-    for method in ["standard", "mixed-p0", "mixed-p0-log"] {
+    for method in Method::ALL.into_iter().filter(|&m| m != Method::Zonal) {
+        let method = method.name();
         let text = band_scene(2, "", "").replace("\"standard\"", &format!("\"{method}\""));
         let scene = parse(&text).unwrap();
         let resolved = build(&scene).unwrap();
@@ -230,10 +233,6 @@ fn bad_cloth_keys_name_the_body_and_key() {
             vec!["cloth 'band'", "bodies.1.material", "thickness"],
         ),
         (band_scene(2, "colour = \"red\"", ""), vec!["colour"]),
-        (
-            band_scene(2, "", "").replace("method = \"standard\"", "method = \"mixed-p1\""),
-            vec!["cloth 'band'", "method", "mixed-p1", "standard"],
-        ),
         (
             band_scene(2, "", "").replace(
                 "method = \"standard\"",

@@ -168,20 +168,9 @@ fn bodies(scene: &Scene) -> Result<(), Fault> {
     Ok(())
 }
 
-/// The methods a scene with a cloth body may use: those whose unknowns a node that no tet
-/// uses does not make singular (a band on a cylinder fails to converge with the others:
-/// the vertex pressures of mixed-p1, its log form, condensed and dual have an empty row at
-/// each cloth node).
-pub const CLOTH_METHODS: [Method; 4] = [
-    Method::Standard,
-    Method::MixedP0,
-    Method::MixedP0Log,
-    Method::Zonal,
-];
-
 /// Cloth bodies (`kind = "cloth"`): a `band` or a surface file (`.obj`, `.stl`, `.msh`) for
 /// mesh, the fabric's keys known and in range, a finite positive `rest_scale`, a solid body
-/// beside it, 4-node tets and a method of [`CLOTH_METHODS`]; a solid body has no band and no
+/// beside it and 4-node tets; a solid body has no band and no
 /// `rest_scale`. Each fault names the body.
 fn cloths(scene: &Scene) -> Result<(), Fault> {
     for (i, body) in scene.bodies.iter().enumerate() {
@@ -284,14 +273,6 @@ fn cloths(scene: &Scene) -> Result<(), Fault> {
             return Err(fault(
                 "element",
                 format!("cloth '{name}' (bodies.{i}) sits beside 4-node tets only: element = \"tet10\" cannot take a cloth"),
-            ));
-        }
-        let method = scene.method();
-        if !CLOTH_METHODS.contains(&method) {
-            let names: Vec<&str> = CLOTH_METHODS.iter().map(|m| m.name()).collect();
-            return Err(fault(
-                "method",
-                format!("cloth '{name}' (bodies.{i}): method '{}' cannot take a cloth (methods that can: {})", method.name(), names.join(", ")),
             ));
         }
     }

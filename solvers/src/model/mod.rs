@@ -99,7 +99,7 @@ const CONTACT_PENALTY: f64 = 100.0;
 
 /// The rest volume measured by each row of `constraints`: by Euler's theorem for the
 /// degree-3 homogeneous volume, `(G(X) X)_i = 3 V_i` for both the linear and the
-/// logarithmic measure.
+/// logarithmic measure (1 for a row that measures none).
 pub(crate) fn row_volumes(
     constraints: &dyn ConstraintSet,
     rest: &[Vec3],
@@ -110,6 +110,13 @@ pub(crate) fn row_volumes(
     let mut v = vec![0.0; constraints.num_constraints()];
     for (&(row, dof), g) in pattern.iter().zip(&values) {
         v[row] += g * rest[dof / 3][dof % 3] / 3.0;
+    }
+    // A row that measures no volume (a vertex in no element: a cloth's node) reads
+    // `-C p = 0`; its residual is scaled by 1 rather than divided by zero.
+    for volume in &mut v {
+        if *volume == 0.0 {
+            *volume = 1.0;
+        }
     }
     Ok(v)
 }
