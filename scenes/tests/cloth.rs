@@ -272,13 +272,12 @@ fn bad_cloth_keys_name_the_body_and_key() {
     }
 }
 
-/// The band's triangles are written beside each frame (part 1 of its time in the `.pvd`),
-/// at its deformed positions: all 78 nodes and 104 triangles.
-#[test]
-fn frames_carry_the_cloth_surface() {
-    let dir = crate::common::scratch("cloth-frames");
+/// Runs the scene `text` with `isochor run --out` in the scratch folder `name`; the output
+/// folder.
+fn run_into(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = crate::common::scratch(name);
     let (scene, out) = (dir.join("band.toml"), dir.join("out"));
-    std::fs::write(&scene, band_scene(2, "", "")).unwrap();
+    std::fs::write(&scene, text).unwrap();
     let o = crate::common::isochor(&[
         "run",
         scene.to_str().unwrap(),
@@ -286,6 +285,14 @@ fn frames_carry_the_cloth_surface() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    out
+}
+
+/// The band's triangles are written beside each frame (part 1 of its time in the `.pvd`),
+/// at its deformed positions: all 78 nodes and 104 triangles.
+#[test]
+fn frames_carry_the_cloth_surface() {
+    let out = run_into("cloth-frames", &band_scene(2, "", ""));
     let pvd = std::fs::read_to_string(out.join("frame.pvd")).unwrap();
     for frame in ["00000", "00001"] {
         let part = format!(r#"part="1" file="frame_{frame}_band.vtp""#);
@@ -302,16 +309,10 @@ fn frames_carry_the_cloth_surface() {
 /// between the block and the band (zero: they are 0.1 m apart), and the band still settles.
 #[test]
 fn a_cloth_is_a_body_of_barrier_contact() {
-    let dir = crate::common::scratch("cloth-contact");
-    let (scene, out) = (dir.join("band.toml"), dir.join("out"));
-    std::fs::write(&scene, band_scene(2, "", "[contact]\ndhat = 1e-3")).unwrap();
-    let o = crate::common::isochor(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let out = run_into(
+        "cloth-contact",
+        &band_scene(2, "", "[contact]\ndhat = 1e-3"),
+    );
     let steps = std::fs::read_to_string(out.join("steps.csv")).unwrap();
     let header: Vec<&str> = steps.lines().next().unwrap().split(',').collect();
     let last: Vec<&str> = steps.lines().last().unwrap().split(',').collect();

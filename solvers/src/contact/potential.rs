@@ -54,7 +54,16 @@ struct Pairs<'a> {
     rest: &'a [Vec3],
 }
 
-impl Pairs<'_> {
+impl<'a> Pairs<'a> {
+    /// The pairs of `candidates` on `surface` at rest positions `rest`.
+    fn new(surface: &'a ContactSurface, candidates: &'a Candidates, rest: &'a [Vec3]) -> Self {
+        Pairs {
+            surface,
+            candidates,
+            rest,
+        }
+    }
+
     /// Pair `i`.
     fn get(&self, i: usize) -> Pair {
         let pt = &self.candidates.point_triangle;
@@ -157,11 +166,7 @@ impl BarrierPotential {
         gradient: Option<&mut [f64]>,
         hessian: Option<HessianBlocks<'_>>,
     ) -> f64 {
-        let pairs = Pairs {
-            surface,
-            candidates,
-            rest,
-        };
+        let pairs = Pairs::new(surface, candidates, rest);
         let derivatives = gradient.is_some() || hessian.is_some();
         let (slots, write) = match hessian {
             Some(h) => (h.slots.into_iter().map(Some).collect(), Some(h.write)),
@@ -265,11 +270,7 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> Vec<([usize; 4], SVector<f64, 12>)> {
-        let pairs = Pairs {
-            surface,
-            candidates,
-            rest,
-        };
+        let pairs = Pairs::new(surface, candidates, rest);
         pairs
             .map(x, |pair, y| {
                 Some((pair.nodes, self.local(pair, y)?.gradient))
@@ -285,11 +286,7 @@ impl BarrierPotential {
         candidates: &Candidates,
         rest: &[Vec3],
     ) -> Vec<[usize; 4]> {
-        let pairs = Pairs {
-            surface,
-            candidates,
-            rest,
-        };
+        let pairs = Pairs::new(surface, candidates, rest);
         (0..candidates.len()).map(|i| pairs.get(i).nodes).collect()
     }
 
@@ -340,11 +337,7 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> Vec<PairForce> {
-        let pairs = Pairs {
-            surface,
-            candidates,
-            rest,
-        };
+        let pairs = Pairs::new(surface, candidates, rest);
         pairs
             .map(x, |pair, y| {
                 let kind = pair.kind(y);
@@ -373,11 +366,7 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> usize {
-        let pairs = Pairs {
-            surface,
-            candidates,
-            rest,
-        };
+        let pairs = Pairs::new(surface, candidates, rest);
         pairs
             .map(x, |pair, y| {
                 pair.kind(y).squared_distance(y) < self.dhat_sq()
@@ -394,11 +383,7 @@ impl BarrierPotential {
         rest: &[Vec3],
         x: &[Vec3],
     ) -> f64 {
-        let pairs = Pairs {
-            surface,
-            candidates,
-            rest,
-        };
+        let pairs = Pairs::new(surface, candidates, rest);
         pairs
             .map(x, |pair, y| pair.kind(y).squared_distance(y))
             .into_iter()

@@ -12,7 +12,9 @@ use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
 use crate::nonlinear::krylov::{solve_stiffness, StiffnessPreconditioner};
 use crate::nonlinear::report::{IterationReport, StepReport};
-use crate::nonlinear::target::{add_scaled, gap, max_abs, norm, remaining_gap, snap, StepTarget};
+use crate::nonlinear::target::{
+    add_scaled, dot, gap, max_abs, norm, remaining_gap, snap, StepTarget,
+};
 use crate::settings::{IterativeSettings, Jacobian};
 use faer::sparse::SparseColMat;
 use isochor_mesh::Vec3;
@@ -148,7 +150,8 @@ impl Newton {
     }
 
     /// One modified-Newton iteration from `x` with the last factorization: the gradient at
-    /// the iterate, the step it gives, taken whole if no surface pair crosses on the way, the
+    /// the iterate (`known` if the previous reused iteration left it; an accepted step leaves
+    /// its trial's there), the step it gives, taken whole if no surface pair crosses on the way, the
     /// state is valid, the energy decreases sufficiently (Armijo) and the force residual
     /// halves. `Some(true)`: `x` met the tolerances; `Some(false)`: the step was taken;
     /// `None`: it was refused (the iteration is redone with a fresh matrix).
@@ -157,13 +160,17 @@ impl Newton {
         system: &mut System<'_>,
         x: &mut [Vec3],
         target: &StepTarget,
+        known: &mut Option<Evaluation>,
         report: &mut StepReport,
     ) -> Result<Option<bool>, SolverError> {
         let Linear::Direct(cholesky) = &mut self.linear else {
             return Ok(None);
         };
         let dofs = &system.model.dofs;
-        let eval = system.energy(x, &target.level, true)?;
+        let eval = match known.take() {
+            Some(eval) => eval,
+            None => system.energy(x, &target.level, true)?,
+        };
         let mut rhs: Vec<f64> = dofs.gather(&eval.gradient).iter().map(|g| -g).collect();
         let force = norm(&rhs);
         report.force_residual = force;
@@ -180,27 +187,26 @@ impl Newton {
         report.timings.solve += start.elapsed();
         let mut direction = vec![0.0; 3 * x.len()];
         dofs.scatter(&rhs, &mut direction);
-        let slope: f64 = eval
-            .gradient
-            .iter()
-            .zip(&direction)
-            .map(|(g, d)| g * d)
-            .sum();
+        let slope = dot(&eval.gradient, &direction);
         let line_search = Instant::now();
         let clear = system.max_step(x, &direction) == 1.0;
         report.timings.ccd += line_search.elapsed();
         let mut trial = x.to_vec();
         add_scaled(&mut trial, &direction, 1.0);
-        let accepted = clear && system.is_valid(&trial) && {
-            let next = system.energy(&trial, &target.level, true)?;
-            next.energy <= eval.energy + ARMIJO * slope
-                && norm(&dofs.gather(&next.gradient)) <= 0.5 * force
+        let next = if clear && system.is_valid(&trial) {
+            Some(system.energy(&trial, &target.level, true)?)
+        } else {
+            None
         };
         report.timings.line_search += line_search.elapsed();
         report.timings.assembly += system.take_assembly_time();
-        if !accepted {
+        let Some(next) = next.filter(|next| {
+            next.energy <= eval.energy + ARMIJO * slope
+                && norm(&dofs.gather(&next.gradient)) <= 0.5 * force
+        }) else {
             return Ok(None);
-        }
+        };
+        *known = Some(next);
         x.copy_from_slice(&trial);
         report.iterations.push(IterationReport {
             force_residual: force,
@@ -234,6 +240,8 @@ impl Newton {
     ) -> Result<bool, SolverError> {
         let settings = system.settings;
         let dofs = &system.model.dofs;
+        // The energy and gradient at `x` a reused iteration computed for its trial step.
+        let mut known = None;
         for _ in 0..iterations {
             if system.update_contact_pattern(x)? {
                 // New contact pairs: the pattern changed, so does the symbolic analysis.
@@ -242,7 +250,7 @@ impl Newton {
                 report.timings.setup += start.elapsed();
             }
             if self.reusable {
-                match self.reuse(system, x, target, report)? {
+                match self.reuse(system, x, target, &mut known, report)? {
                     Some(converged) => {
                         if converged {
                             report.converged = true;
@@ -282,12 +290,7 @@ impl Newton {
 
             let mut direction = d_fixed.clone();
             dofs.scatter(&rhs, &mut direction);
-            let slope: f64 = eval
-                .gradient
-                .iter()
-                .zip(&direction)
-                .map(|(g, d)| g * d)
-                .sum();
+            let slope = dot(&eval.gradient, &direction);
             let moving_boundary = max_abs(&d_fixed) > 0.0;
             // Energy differences below this are rounding noise; there, a smaller gradient
             // decides instead of the Armijo condition.

@@ -315,6 +315,8 @@ impl SaddleNewton {
         }
         // Every step starts with a fresh matrix.
         self.reusable = false;
+        // The residual at `(x, p)` a reused iteration computed for its trial step.
+        let mut known = None;
         for _ in 0..settings.max_iterations {
             if system.update_contact_pattern(x)? {
                 // New contact pairs: the pattern changed, so does the symbolic analysis.
@@ -323,7 +325,7 @@ impl SaddleNewton {
                 report.timings.setup += start.elapsed();
             }
             if self.reusable {
-                match self.reuse(system, (x, p), target, &merit, report)? {
+                match self.reuse(system, (x, p), target, (&merit, &mut known), report)? {
                     Reuse::Converged => {
                         report.converged = true;
                         return Ok(());
@@ -485,19 +487,27 @@ impl SaddleNewton {
     }
 
     /// One modified-Newton iteration from `(x, p)` with the last factorization: the residual
-    /// at the iterate, the step it gives, taken whole if no surface pair crosses on the way,
-    /// the state is valid and the merit falls to a quarter (the residual norm halves).
+    /// at the iterate (`known` if the previous reused iteration left it), the step it gives,
+    /// taken whole if no surface pair crosses on the way, the state is valid and the merit
+    /// falls to a quarter (the residual norm halves); an accepted step leaves its residual
+    /// in `known`.
     fn reuse(
         &mut self,
         system: &mut System<'_>,
         (x, p): (&mut [Vec3], &mut [f64]),
         target: &StepTarget,
-        merit: &dyn Fn(&[f64], &[f64]) -> f64,
+        (merit, known): (
+            &dyn Fn(&[f64], &[f64]) -> f64,
+            &mut Option<(Vec<f64>, Vec<f64>)>,
+        ),
         report: &mut StepReport,
     ) -> Result<Reuse, SolverError> {
         let settings = system.settings;
         let volumes = &system.model.row_volumes;
-        let (sigma, theta) = self.residuals(system, x, p, &target.level)?;
+        let (sigma, theta) = match known.take() {
+            Some(residuals) => residuals,
+            None => self.residuals(system, x, p, &target.level)?,
+        };
         let sigma_f = system.model.dofs.gather(&sigma);
         let force = norm(&sigma_f);
         let scaled: Vec<f64> = theta.iter().zip(volumes).map(|(t, v)| t / v).collect();
@@ -523,15 +533,19 @@ impl SaddleNewton {
         let mut trial_x = x.to_vec();
         add_scaled(&mut trial_x, &direction, 1.0);
         let trial_p: Vec<f64> = p.iter().zip(&dp).map(|(a, b)| a + b).collect();
-        let accepted = clear && system.is_valid(&trial_x) && {
-            let (s, t) = self.residuals(system, &trial_x, &trial_p, &target.level)?;
-            merit(&system.model.dofs.gather(&s), &t) <= 0.25 * merit0
+        let trial = if clear && system.is_valid(&trial_x) {
+            Some(self.residuals(system, &trial_x, &trial_p, &target.level)?)
+        } else {
+            None
         };
         report.timings.line_search += line_search.elapsed();
         report.timings.assembly += system.take_assembly_time();
-        if !accepted {
+        let Some(residuals) =
+            trial.filter(|(s, t)| merit(&system.model.dofs.gather(s), t) <= 0.25 * merit0)
+        else {
             return Ok(Reuse::Refused);
-        }
+        };
+        *known = Some(residuals);
         x.copy_from_slice(&trial_x);
         p.copy_from_slice(&trial_p);
         report.iterations.push(IterationReport {

@@ -32,6 +32,11 @@ pub fn add_scaled(x: &mut [Vec3], d: &[f64], alpha: f64) {
     }
 }
 
+/// The dot product of two vectors of equal length.
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
 /// Euclidean norm.
 pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|a| a * a).sum::<f64>().sqrt()
