@@ -105,6 +105,9 @@ pub struct SaddleNewton {
     reusable: bool,
 }
 
+/// The full-space force residual `grad E + G^T p` and the constraint residual `phi - C p`.
+type Residuals = (Vec<f64>, Vec<f64>);
+
 /// How an iteration with the last factorization went.
 enum Reuse {
     /// The iterate met the tolerances.
@@ -221,7 +224,7 @@ impl SaddleNewton {
         x: &[Vec3],
         p: &[f64],
         level: &LoadLevel,
-    ) -> Result<(Vec<f64>, Vec<f64>), SolverError> {
+    ) -> Result<Residuals, SolverError> {
         let constraints = system.model.constraints.clone().expect("checked in new");
         system.model.set_load_level(level);
         let eval = system.energy(x, level, true)?;
@@ -325,7 +328,7 @@ impl SaddleNewton {
                 report.timings.setup += start.elapsed();
             }
             if self.reusable {
-                match self.reuse(system, (x, p), target, (&merit, &mut known), report)? {
+                match self.reuse(system, (x, p), target, &merit, &mut known, report)? {
                     Reuse::Converged => {
                         report.converged = true;
                         return Ok(());
@@ -496,10 +499,8 @@ impl SaddleNewton {
         system: &mut System<'_>,
         (x, p): (&mut [Vec3], &mut [f64]),
         target: &StepTarget,
-        (merit, known): (
-            &dyn Fn(&[f64], &[f64]) -> f64,
-            &mut Option<(Vec<f64>, Vec<f64>)>,
-        ),
+        merit: &dyn Fn(&[f64], &[f64]) -> f64,
+        known: &mut Option<Residuals>,
         report: &mut StepReport,
     ) -> Result<Reuse, SolverError> {
         let settings = system.settings;
