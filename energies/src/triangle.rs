@@ -39,6 +39,15 @@ impl RestTriangle {
         })
     }
 
+    /// The same triangle with every rest length times `scale` (positive): `D_m^-1 / scale`,
+    /// area `scale^2 A_0`.
+    pub fn scaled(&self, scale: f64) -> Self {
+        RestTriangle {
+            dm_inv: self.dm_inv / scale,
+            area: self.area * scale * scale,
+        }
+    }
+
     /// Rest area `A_0`.
     pub fn area(&self) -> f64 {
         self.area

@@ -18,6 +18,16 @@
 //! one, a coarse box near the separation: the 10% slack keeps the thick contact region of a
 //! separation from being refined everywhere to `tolerance`).
 //!
+//! Before any box, a pair whose points never become coplanar is let go: with no separation
+//! asked, touching needs the point in the triangle's plane (the two edges in one plane), so a
+//! signed volume `det(X, Y, Z)` of the pair's three difference vectors that keeps one strict
+//! sign over the step rules contact out. Each vector is linear in `t`, so the volume is a
+//! cubic whose Bernstein coefficients are sums of determinants of the end vectors (the
+//! polarization of the trilinear `det`), bounded with the same rounding; four of one strict
+//! sign keep the cubic off zero on `[0, 1]` (the filter of Provot 1997 and Bridson et al.
+//! 2002, made conservative). It settles pairs that slide past each other at a small gap,
+//! whose boxes would otherwise be refined along the whole motion.
+//!
 //! The guarantee, in floating point: when a pair comes within `min_separation` (in the
 //! largest coordinate, which holds the Euclidean ball) at some time `t*`, a time of impact
 //! `toi <= t*` is returned; no pair closer than that is missed. A reported time may be a
@@ -161,6 +171,49 @@ impl PartialOrd for ParameterBox {
 }
 
 impl Pair {
+    /// Whether the signed volume of the pair's difference vectors (`F`'s constant part and
+    /// its two directions) keeps one strict sign over the whole step, rounding included: then
+    /// the pair is never coplanar and cannot touch.
+    fn never_coplanar(&self) -> bool {
+        let ([k, l], _) = self.first;
+        let ([m, n], _) = self.second;
+        let difference = |x: &[Vec3; 4], [i, j]: [usize; 2]| -> [Interval; 3] {
+            std::array::from_fn(|a| Interval::point(x[i][a]).sub(Interval::point(x[j][a])))
+        };
+        let ends = [&self.start, &self.end];
+        let vectors: [[[Interval; 3]; 3]; 2] = std::array::from_fn(|e| {
+            [
+                difference(ends[e], self.base),
+                difference(ends[e], [k, l]),
+                difference(ends[e], [m, n]),
+            ]
+        });
+        // det with factor f taken at end `choice[f]` (0: start, 1: end).
+        let det = |choice: [usize; 3]| {
+            let [x, y, z] = [
+                vectors[choice[0]][0],
+                vectors[choice[1]][1],
+                vectors[choice[2]][2],
+            ];
+            let cross = |i: usize, j: usize| y[i].mul(z[j]).sub(y[j].mul(z[i]));
+            x[0].mul(cross(1, 2))
+                .add(x[1].mul(cross(2, 0)))
+                .add(x[2].mul(cross(0, 1)))
+        };
+        let sum = |choices: &[[usize; 3]]| {
+            choices[1..]
+                .iter()
+                .fold(det(choices[0]), |acc, &c| acc.add(det(c)))
+        };
+        let coefficients = [
+            det([0, 0, 0]),
+            sum(&[[1, 0, 0], [0, 1, 0], [0, 0, 1]]),
+            sum(&[[0, 1, 1], [1, 0, 1], [1, 1, 0]]),
+            det([1, 1, 1]),
+        ];
+        coefficients.iter().all(|c| c.lo > 0.0) || coefficients.iter().all(|c| c.hi < 0.0)
+    }
+
     /// The positions at the exact time `t`, per vertex and axis.
     fn at(&self, motion: &[[Interval; 3]; 4], t: f64) -> [[Interval; 3]; 4] {
         std::array::from_fn(|i| {
@@ -219,6 +272,9 @@ impl Pair {
             })
         });
         let ms = settings.min_separation;
+        if ms == 0.0 && self.never_coplanar() {
+            return None;
+        }
         let sensitivity = self.sensitivities();
         let mut heap = BinaryHeap::new();
         heap.push(ParameterBox {

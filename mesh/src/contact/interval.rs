@@ -51,6 +51,20 @@ impl Interval {
         }
     }
 
+    /// `self * other`, rounded outward.
+    pub(crate) fn mul(self, other: Self) -> Self {
+        let products = [
+            self.lo * other.lo,
+            self.lo * other.hi,
+            self.hi * other.lo,
+            self.hi * other.hi,
+        ];
+        Interval {
+            lo: next_down(products.iter().copied().fold(f64::INFINITY, f64::min)),
+            hi: next_up(products.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
+        }
+    }
+
     /// `s * self` for an exact scalar `s`, rounded outward.
     pub(crate) fn scale(self, s: f64) -> Self {
         let (a, b) = (self.lo * s, self.hi * s);
@@ -74,5 +88,12 @@ mod tests {
         assert_eq!(next_up(0.0), f64::from_bits(1));
         assert_eq!(next_down(1.0), 1.0 - f64::EPSILON / 2.0);
         assert_eq!(next_up(-1.0), -1.0 + f64::EPSILON / 2.0);
+    }
+
+    #[test]
+    fn widened_products_contain_the_exact_product() {
+        let p = Interval { lo: -0.1, hi: 0.3 }.mul(Interval { lo: 0.7, hi: 0.9 });
+        assert!(p.lo < -0.1 * 0.9 && 0.3 * 0.9 < p.hi);
+        assert!(p.lo > -0.1 * 0.9 - 1e-16 && p.hi < 0.3 * 0.9 + 1e-16);
     }
 }

@@ -1,6 +1,8 @@
 //! A cloth sheet's stored energy: the membrane of every triangle and the discrete-shell
 //! bending of every interior edge (`isochor_energies::cloth`), over the sheet's nodes among
-//! the problem's. The element Hessians are projected onto the PSD cone (a sheet under
+//! the problem's. A sheet tighter than its placement (`rest_scale < 1`) is tightened as a load
+//! is applied: its rest lengths shrink from the placed ones to `rest_scale` times them along
+//! the load ramp (at once in dynamics, where loads are applied at once). The element Hessians are projected onto the PSD cone (a sheet under
 //! compression buckles, and a hinge away from its rest angle is indefinite), so that Newton
 //! steps descend.
 
@@ -20,16 +22,20 @@ use rayon::prelude::*;
 pub struct Cloth {
     fabric: Fabric,
     triangles: Vec<[usize; 3]>,
-    rest_triangles: Vec<RestTriangle>,
+    /// The placed triangles (rest scale 1).
+    placed_triangles: Vec<RestTriangle>,
+    rest_scale: f64,
     hinges: Vec<[usize; 4]>,
     rest_hinges: Vec<RestHinge>,
 }
 
 impl Cloth {
     /// The sheet of consistently oriented `triangles` (indices into `rest`, the problem's rest
-    /// positions) of `fabric`, whose rest lengths are those of `rest` times `rest_scale` (a
-    /// band with `rest_scale < 1` is tighter than its placement). Errors name a degenerate
-    /// triangle or hinge and a non-manifold or inconsistently oriented edge.
+    /// positions) of `fabric`, whose rest lengths at full load are those of `rest` times
+    /// `rest_scale` (a band with `rest_scale < 1` is tighter than its placement). The hinges'
+    /// energy does not depend on the scale (`|e_0|^2 / (A_1 + A_2)` and `theta_0` are
+    /// invariant). Errors name a degenerate triangle or hinge and a non-manifold or
+    /// inconsistently oriented edge.
     pub fn new(
         rest: &[Vec3],
         triangles: Vec<[usize; 3]>,
@@ -41,15 +47,11 @@ impl Cloth {
                 "the cloth's rest_scale = {rest_scale} must be finite and positive"
             )));
         }
-        let scaled = |nodes: &[usize]| -> Vec<Vec3> {
-            nodes.iter().map(|&v| rest[v] * rest_scale).collect()
-        };
-        let rest_triangles = triangles
+        let placed_triangles = triangles
             .iter()
             .enumerate()
             .map(|(t, nodes)| {
-                let p = scaled(nodes);
-                RestTriangle::new(&[p[0], p[1], p[2]]).ok_or_else(|| {
+                RestTriangle::new(&nodes.map(|v| rest[v])).ok_or_else(|| {
                     SolverError::InvalidProblem(format!(
                         "cloth triangle {t} {nodes:?} is degenerate"
                     ))
@@ -60,8 +62,7 @@ impl Cloth {
         let rest_hinges = hinges
             .iter()
             .map(|nodes| {
-                let p = scaled(nodes);
-                RestHinge::new(&fabric, &[p[0], p[1], p[2], p[3]]).ok_or_else(|| {
+                RestHinge::new(&fabric, &nodes.map(|v| rest[v])).ok_or_else(|| {
                     SolverError::InvalidProblem(format!("cloth hinge {nodes:?} is degenerate"))
                 })
             })
@@ -69,7 +70,8 @@ impl Cloth {
         Ok(Cloth {
             fabric,
             triangles,
-            rest_triangles,
+            placed_triangles,
+            rest_scale,
             hinges,
             rest_hinges,
         })
@@ -85,10 +87,11 @@ impl Cloth {
     /// placed one times `rest_scale^2`).
     pub fn add_lumped_masses(&self, density: f64, masses: &mut [f64]) {
         let areal = density * self.fabric.thickness();
-        for (nodes, rest) in self.triangles.iter().zip(&self.rest_triangles) {
+        let rest_area = |t: &RestTriangle| t.area() * self.rest_scale * self.rest_scale;
+        for (nodes, placed) in self.triangles.iter().zip(&self.placed_triangles) {
             nodes
                 .iter()
-                .for_each(|&v| masses[v] += areal * rest.area() / 3.0);
+                .for_each(|&v| masses[v] += areal * rest_area(placed) / 3.0);
         }
     }
 
@@ -108,9 +111,16 @@ impl Cloth {
 }
 
 impl Cloth {
-    fn membrane(&self, x: &[Vec3], t: usize) -> TriangleTerms {
+    /// The rest scale at `level`: from 1 (placed) to `rest_scale` along the load ramp.
+    fn scale_at(&self, level: &LoadLevel) -> f64 {
+        let ramp = level.load_scale(None);
+        self.rest_scale + (1.0 - self.rest_scale) * (1.0 - ramp)
+    }
+
+    fn membrane(&self, x: &[Vec3], t: usize, scale: f64) -> TriangleTerms {
         let nodes = &self.triangles[t];
-        energy_gradient_hessian(&self.fabric, &nodes.map(|v| x[v]), &self.rest_triangles[t])
+        let rest = self.placed_triangles[t].scaled(scale);
+        energy_gradient_hessian(&self.fabric, &nodes.map(|v| x[v]), &rest)
     }
 
     fn bending(&self, x: &[Vec3], h: usize) -> Result<HingeTerms, SolverError> {
@@ -139,15 +149,16 @@ impl EnergyTerm for Cloth {
     fn evaluate(
         &self,
         x: &[Vec3],
-        _level: &LoadLevel,
+        level: &LoadLevel,
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         // Elements evaluated in parallel, then summed in element order (resumed runs must
         // equal uninterrupted ones bit for bit); the Hessians projected only when asked for.
+        let scale = self.scale_at(level);
         let membranes: Vec<TriangleTerms> = (0..self.triangles.len())
             .into_par_iter()
-            .map(|t| self.membrane(x, t))
+            .map(|t| self.membrane(x, t, scale))
             .collect();
         let hinges: Vec<HingeTerms> = (0..self.hinges.len())
             .into_par_iter()
