@@ -93,7 +93,7 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
 /// How the entries of a dense element block are listed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BlockOrder {
-    /// Column by column, as [`block_pattern`] (and the element matrices of the terms).
+    /// Column by column, as the element matrices of the terms.
     ColumnMajor,
     /// Row by row, as the constraints' geometric stiffness.
     RowMajor,
