@@ -55,6 +55,15 @@ pub trait ConstraintSet: Send + Sync + std::fmt::Debug {
     /// `(dof, dof)` of every geometric stiffness entry (both triangles).
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)>;
 
+    /// The geometric stiffness pattern as dense element blocks when it is one: the elements'
+    /// flat node list and the nodes per element, each block row-major over the element's
+    /// DOFs (3 per node, node-major), the entries and order of
+    /// [`ConstraintSet::geometric_stiffness_pattern`]. The solvers then lay it out per node
+    /// pair; `None` (the default) for other patterns.
+    fn geometric_stiffness_blocks(&self) -> Option<(&[usize], usize)> {
+        None
+    }
+
     /// Geometric stiffness `K_g = sum_i p_i Hess(phi_i)` (eq. 23) for multipliers `p`
     /// (length `m`), in the order of [`ConstraintSet::geometric_stiffness_pattern`].
     fn geometric_stiffness_values(

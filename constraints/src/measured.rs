@@ -146,6 +146,12 @@ impl MeasuredElements {
             .flat_map(|&i| [3 * i, 3 * i + 1, 3 * i + 2])
     }
 
+    /// The flat node list of the elements and the nodes per element: the node blocks of
+    /// [`MeasuredElements::hessian_pattern`] over every element.
+    pub(crate) fn blocks(&self) -> (&[usize], usize) {
+        (&self.connectivity, self.kind.num_nodes())
+    }
+
     /// DOFs per element.
     pub(crate) fn element_dofs(&self) -> usize {
         3 * self.kind.num_nodes()

@@ -185,6 +185,10 @@ impl ConstraintSet for NodalConstraints {
         self.elements.hessian_pattern(0..self.elements.len())
     }
 
+    fn geometric_stiffness_blocks(&self) -> Option<(&[usize], usize)> {
+        Some(self.elements.blocks())
+    }
+
     fn geometric_stiffness_values(
         &self,
         x: &[Vec3],

@@ -104,6 +104,10 @@ impl ConstraintSet for PerElementConstraints {
         self.elements.hessian_pattern(0..self.elements.len())
     }
 
+    fn geometric_stiffness_blocks(&self) -> Option<(&[usize], usize)> {
+        Some(self.elements.blocks())
+    }
+
     fn geometric_stiffness_values(
         &self,
         x: &[Vec3],

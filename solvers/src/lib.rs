@@ -118,6 +118,7 @@ mod settings;
 mod simulation;
 pub mod terms;
 
+pub use assembly::{HessianBlock, NodePattern};
 pub use error::SolverError;
 /// How [`Material::nodal_compliance`] integrates the nodal compliance (re-exported so that a
 /// `Material` can be written without depending on `isochor-constraints`).

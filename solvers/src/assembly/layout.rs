@@ -2,6 +2,7 @@
 //! iteration refills a flat value buffer in parallel (each term writes its own slice, each
 //! element its own chunk) and gathers the free-free entries into the fixed pattern.
 
+use super::node_pattern::{HessianBlock, NodePattern};
 use crate::error::SolverError;
 use crate::linear::{SparsityPattern, Triangle};
 use crate::model::dofs::Dofs;
@@ -18,16 +19,20 @@ pub struct Layout {
 }
 
 impl Layout {
-    /// Layout of a symmetric `3n x 3n` Hessian given with both triangles; the pattern keeps
-    /// the lower triangle of the free-free block.
-    pub fn hessian(pairs: &[(usize, usize)], dofs: &Dofs) -> Result<Self, SolverError> {
-        Self::build(
-            pairs,
-            |r| dofs.free_index(r),
-            dofs,
-            Triangle::Lower,
-            dofs.num_free(),
-        )
+    /// Layout of a symmetric `3n x 3n` Hessian whose blocks give both triangles; the pattern
+    /// keeps the lower triangle of the free-free block (built per node pair where the
+    /// blocks allow, [`super::node_pattern`]).
+    pub fn hessian(blocks: &[HessianBlock], dofs: &Dofs) -> Result<Self, SolverError> {
+        let NodePattern {
+            kept,
+            coupling,
+            pattern,
+        } = NodePattern::new(blocks, dofs)?;
+        Ok(Layout {
+            kept,
+            coupling,
+            pattern,
+        })
     }
 
     /// Layout of a constraint Jacobian `G` (`rows x 3n`): all rows kept, prescribed columns
@@ -37,32 +42,19 @@ impl Layout {
         rows: usize,
         dofs: &Dofs,
     ) -> Result<Self, SolverError> {
-        Self::build(pairs, Some, dofs, Triangle::Full, rows)
-    }
-
-    fn build(
-        pairs: &[(usize, usize)],
-        row_index: impl Fn(usize) -> Option<usize>,
-        dofs: &Dofs,
-        triangle: Triangle,
-        rows: usize,
-    ) -> Result<Self, SolverError> {
         let mut kept = Vec::new();
         let mut reduced = Vec::new();
         let mut coupling = Vec::new();
-        for (k, &(r, c)) in pairs.iter().enumerate() {
-            let Some(row) = row_index(r) else { continue };
+        for (k, &(row, c)) in pairs.iter().enumerate() {
             match dofs.free_index(c) {
                 Some(col) => {
-                    if triangle == Triangle::Full || row >= col {
-                        kept.push(k);
-                        reduced.push((row, col));
-                    }
+                    kept.push(k);
+                    reduced.push((row, col));
                 }
                 None => coupling.push((k, row, c)),
             }
         }
-        let pattern = SparsityPattern::new(rows, dofs.num_free(), &reduced, triangle)
+        let pattern = SparsityPattern::new(rows, dofs.num_free(), &reduced, Triangle::Full)
             .map_err(|e| SolverError::Linear(e.to_string()))?;
         Ok(Layout {
             kept,

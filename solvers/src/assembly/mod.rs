@@ -4,12 +4,15 @@
 //! layouts built once per run.
 
 mod layout;
+mod node_pattern;
+
+pub use node_pattern::{HessianBlock, NodePattern};
 
 use crate::error::SolverError;
 use crate::model::{Model, NonlinearScheme};
 use crate::problem::schedule::LoadLevel;
 use crate::settings::Settings;
-use crate::terms::{EnergyTerm, Inertia};
+use crate::terms::{BlockOrder, ElementBlocks, EnergyTerm, Inertia};
 use isochor_mesh::Vec3;
 use layout::Layout;
 use std::time::{Duration, Instant};
@@ -51,14 +54,31 @@ enum Geometric {
 }
 
 impl Geometric {
-    /// Shares the first block (of those `offsets` delimit in `pairs`) whose pattern is
-    /// `pattern`, else its own.
-    fn place(pattern: &[(usize, usize)], offsets: &[usize], pairs: &[(usize, usize)]) -> Self {
-        offsets
-            .windows(2)
-            .position(|w| pairs[w[0]..w[1]] == *pattern)
+    /// Shares the first of `blocks` whose pattern is `pattern`, else its own.
+    fn place(pattern: &HessianBlock, blocks: &[HessianBlock]) -> Self {
+        blocks
+            .iter()
+            .position(|b| b.same_pattern(pattern))
             .map_or(Geometric::Own, Geometric::Shares)
     }
+}
+
+/// Start of every block's values in the value buffer, and the end of the last.
+fn offsets(blocks: &[HessianBlock]) -> Vec<usize> {
+    std::iter::once(0)
+        .chain(blocks.iter().scan(0, |end, b| {
+            *end += b.len();
+            Some(*end)
+        }))
+        .collect()
+}
+
+/// A term's Hessian pattern: its element blocks when it has them, else its pairs.
+fn block_of(term: &dyn EnergyTerm) -> HessianBlock {
+    term.hessian_blocks().map_or_else(
+        || HessianBlock::Pairs(term.hessian_pattern()),
+        HessianBlock::Elements,
+    )
 }
 
 /// A model with its inertia (in dynamics), layouts and buffers.
@@ -74,9 +94,9 @@ pub struct System<'m> {
     geometric: Option<Geometric>,
     /// The geometric stiffness's values before they are added into a shared block.
     geometric_scratch: Vec<f64>,
-    /// The `(dof, dof)` pairs of every block, in order (a changing surface-contact block is
-    /// spliced in place).
-    pairs: Vec<(usize, usize)>,
+    /// The pattern of every block, in order (a changing surface-contact block is replaced
+    /// in place).
+    blocks: Vec<HessianBlock>,
     /// How many times the surface-contact pairs changed the pattern.
     pub pattern_rebuilds: usize,
     pub hessian: Layout,
@@ -98,15 +118,7 @@ impl<'m> System<'m> {
         inertia: Option<Inertia>,
         settings: Settings,
     ) -> Result<Self, SolverError> {
-        let mut pairs = Vec::new();
-        let mut offsets = vec![0];
-        let push = |p: Vec<(usize, usize)>, pairs: &mut Vec<_>, offsets: &mut Vec<usize>| {
-            pairs.extend(p);
-            offsets.push(pairs.len());
-        };
-        for term in terms(model, inertia.as_ref()) {
-            push(term.hessian_pattern(), &mut pairs, &mut offsets);
-        }
+        let mut blocks: Vec<HessianBlock> = terms(model, inertia.as_ref()).map(block_of).collect();
         let saddle = matches!(
             model.scheme,
             NonlinearScheme::SaddleDirect | NonlinearScheme::SaddleSchur
@@ -115,10 +127,17 @@ impl<'m> System<'m> {
         let (jacobian, jacobian_len) = match &model.constraints {
             Some(c) => {
                 if saddle {
-                    let pattern = c.geometric_stiffness_pattern();
-                    geometric = Some(Geometric::place(&pattern, &offsets, &pairs));
+                    let pattern = match c.geometric_stiffness_blocks() {
+                        Some((nodes, per_element)) => HessianBlock::Elements(ElementBlocks {
+                            nodes: nodes.to_vec(),
+                            per_element,
+                            order: BlockOrder::RowMajor,
+                        }),
+                        None => HessianBlock::Pairs(c.geometric_stiffness_pattern()),
+                    };
+                    geometric = Some(Geometric::place(&pattern, &blocks));
                     if geometric == Some(Geometric::Own) {
-                        push(pattern, &mut pairs, &mut offsets);
+                        blocks.push(pattern);
                     }
                 }
                 let g = c.jacobian_pattern();
@@ -129,16 +148,17 @@ impl<'m> System<'m> {
             }
             None => (None, 0),
         };
-        let hessian = Layout::hessian(&pairs, &model.dofs)?;
+        let hessian = Layout::hessian(&blocks, &model.dofs)?;
+        let offsets = offsets(&blocks);
         Ok(System {
             model,
             inertia,
             settings,
-            hessian_values: vec![0.0; pairs.len()],
+            hessian_values: vec![0.0; offsets[blocks.len()]],
             offsets,
             geometric,
             geometric_scratch: Vec::new(),
-            pairs,
+            blocks,
             pattern_rebuilds: 0,
             hessian,
             jacobian,
@@ -180,8 +200,8 @@ impl<'m> System<'m> {
         if !changed {
             return Ok(false);
         }
-        self.hessian = Layout::hessian(&self.pairs, &self.model.dofs)?;
-        self.hessian_values = vec![0.0; self.pairs.len()];
+        self.hessian = Layout::hessian(&self.blocks, &self.model.dofs)?;
+        self.hessian_values = vec![0.0; self.offsets[self.blocks.len()]];
         self.pattern_rebuilds += 1;
         Ok(true)
     }
@@ -199,12 +219,8 @@ impl<'m> System<'m> {
 
     /// Replaces the pattern of block `block` by `new`.
     fn splice(&mut self, block: usize, new: Vec<(usize, usize)>) {
-        let (start, end) = (self.offsets[block], self.offsets[block + 1]);
-        let grown = new.len() as isize - (end - start) as isize;
-        self.pairs.splice(start..end, new);
-        for offset in &mut self.offsets[block + 1..] {
-            *offset = (*offset as isize + grown) as usize;
-        }
+        self.blocks[block] = HessianBlock::Pairs(new);
+        self.offsets = offsets(&self.blocks);
     }
 
     /// The largest step along `direction` (three entries per node) from `x` that no pair of

@@ -109,6 +109,24 @@ impl SparsityPattern {
         })
     }
 
+    /// A pattern from its compressed-column structure (`col_ptr`, sorted `row_idx`) and the
+    /// slot of every input, all stored: for builders that know the structure.
+    pub(crate) fn from_parts(
+        nrows: usize,
+        ncols: usize,
+        col_ptr: Vec<usize>,
+        row_idx: Vec<usize>,
+        slots: Vec<usize>,
+        triangle: Triangle,
+    ) -> Self {
+        let symbolic = SymbolicSparseColMat::new_checked(nrows, ncols, col_ptr, None, row_idx);
+        Self {
+            symbolic,
+            slots,
+            triangle,
+        }
+    }
+
     /// The stored (deduplicated) structure.
     pub fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
         self.symbolic.as_ref()

@@ -57,6 +57,11 @@ impl Dofs {
         })
     }
 
+    /// Number of DOFs, free and prescribed (`3n`).
+    pub fn num_dofs(&self) -> usize {
+        self.free_index.len()
+    }
+
     /// Number of free DOFs.
     pub fn num_free(&self) -> usize {
         self.free.len()

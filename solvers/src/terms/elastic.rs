@@ -1,7 +1,7 @@
 //! The stored elastic energy `W(x) = sum_e sum_q w_q Psi(F_q(x))` (eq. 2 of Sheen et al. 2021
 //! integrated by quadrature), evaluated in parallel over elements.
 
-use super::{block_pattern, scatter, EnergyTerm};
+use super::{scatter, BlockOrder, ElementBlocks, EnergyTerm};
 use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;
 use isochor_energies::kernel::{self, RestPoints};
@@ -98,6 +98,15 @@ impl Elastic {
         self.materials[self.material_of[e]].as_ref()
     }
 
+    /// The element blocks of the Hessian, column-major as the element matrices.
+    fn blocks(&self) -> ElementBlocks {
+        ElementBlocks {
+            nodes: self.connectivity.clone(),
+            per_element: self.nodes_per_element,
+            order: BlockOrder::ColumnMajor,
+        }
+    }
+
     fn num_elements(&self) -> usize {
         self.connectivity.len() / self.nodes_per_element
     }
@@ -143,9 +152,11 @@ impl EnergyTerm for Elastic {
     }
 
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        (0..self.num_elements())
-            .flat_map(|e| block_pattern(self.nodes(e)))
-            .collect()
+        self.blocks().pairs()
+    }
+
+    fn hessian_blocks(&self) -> Option<ElementBlocks> {
+        Some(self.blocks())
     }
 
     fn evaluate(
