@@ -539,7 +539,7 @@ fn hertz_study_level() {
     let element = TetElement::from_name(&var("HERTZ_ELEMENT", "tet4")).expect("HERTZ_ELEMENT");
     let method: Method = var("HERTZ_METHOD", "mixed-p1").parse().unwrap();
     let samples = report(Case::plate(element, method, res));
-    // A mixed method follows the 3/2 power (fitted 1.41-1.52 at res 4-14 on tet4).
+    // A mixed method follows the 3/2 power (fitted 1.41-1.52 at res 4-12 on tet4).
     let p = exponent(&samples);
     assert!(
         method == Method::Standard || (p - 1.5).abs() < 0.1,
