@@ -525,3 +525,24 @@ fn hertz_study_two_spheres() {
         assert!((ep - es).abs() < 0.02, "pair {ep}, plate {es}");
     }
 }
+
+#[test]
+#[ignore = "minutes to an hour, one level of a study: scripts/hertz-levels.sh"]
+fn hertz_study_level() {
+    // The level from the environment, so that each runs in a process of its own (its time
+    // and peak memory measured alone): HERTZ_RES (4, seconds), HERTZ_ELEMENT (tet4),
+    // HERTZ_METHOD (mixed-p1).
+    let var = |key: &str, default: &str| std::env::var(key).unwrap_or_else(|_| default.into());
+    let res: usize = var("HERTZ_RES", "4")
+        .parse()
+        .expect("HERTZ_RES, a mesh level");
+    let element = TetElement::from_name(&var("HERTZ_ELEMENT", "tet4")).expect("HERTZ_ELEMENT");
+    let method: Method = var("HERTZ_METHOD", "mixed-p1").parse().unwrap();
+    let samples = report(Case::plate(element, method, res));
+    // A mixed method follows the 3/2 power (fitted 1.41-1.52 at res 4-12 on tet4).
+    let p = exponent(&samples);
+    assert!(
+        method == Method::Standard || (p - 1.5).abs() < 0.1,
+        "exponent {p}"
+    );
+}
