@@ -33,6 +33,10 @@ pub struct StepRecord {
     pub backtracks: Vec<usize>,
     /// Diagonal shift added to the stiffness per iteration (0 when none was needed).
     pub shifts: Vec<f64>,
+    /// Per iteration: whether the barrier contact's pair Hessians were PSD-projected (the
+    /// matrix with the exact ones did not factorize).
+    #[serde(default)]
+    pub contact_projected: Vec<bool>,
     /// Whole-body volume change (deformed/rest - 1) of the accepted state.
     pub volume_change: f64,
     /// Inverted tets in the accepted state.

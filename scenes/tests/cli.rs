@@ -347,17 +347,20 @@ fn a_failed_run_logs_the_failed_step() {
     let mut lines = log.lines();
     assert_eq!(
         lines.next(),
-        Some("step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt")
+        Some("step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,contact_projected")
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     // Two iterations of step 1, then its final residuals (no step length, no shift).
     assert_eq!(rows.len(), 3, "{log}");
-    assert!(rows.iter().all(|r| r[0] == "1" && r.len() == 10), "{log}");
+    assert!(rows.iter().all(|r| r[0] == "1" && r.len() == 11), "{log}");
     assert!(
         rows[..2].iter().all(|r| r[8].parse::<f64>().is_ok()),
         "{log}"
     );
     assert_eq!(rows[2][8], "", "{log}");
+    // No barrier contact here: no iteration projected its Hessian.
+    assert!(rows[..2].iter().all(|r| r[10] == "0"), "{log}");
+    assert_eq!(rows[2][10], "", "{log}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -75,12 +75,25 @@ fn stacked_cubes_share_the_compression() {
         sim.set_surface_contact(resolved.surface_contact.unwrap())
             .unwrap();
         let surface = ContactSurface::from_element_surface(&mesh.boundary().unwrap());
-        let mut intersections = 0;
+        let (mut intersections, mut iterations, mut projected) = (0, 0, 0);
         sim.run(resolved.stepping, |frame| {
             intersections += intersecting_triangles(&surface, &frame.state.positions).len();
+            iterations += frame.report.iterations.len();
+            projected += frame
+                .report
+                .iterations
+                .iter()
+                .filter(|i| i.contact_projected)
+                .count();
         })
         .unwrap();
         assert_eq!(intersections, 0, "{method}: the cubes never overlap");
+        eprintln!(
+            "{method}: {projected} of {iterations} iterations projected the barrier's Hessian"
+        );
+        // Both paths run here: the exact barrier Hessian where the matrix factorizes with it,
+        // the projected one (14 of 44 and 18 of 49 iterations, measured) where it does not.
+        assert!(0 < projected && projected < iterations, "{method}");
         let x = &sim.state().positions;
         let sink = interface
             .iter()

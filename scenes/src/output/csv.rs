@@ -7,12 +7,14 @@ use std::fmt::Write;
 use std::path::Path;
 
 /// `iterations.csv`: one row per Newton iteration of every attempt of every step (the final
-/// residuals of an attempt have empty `step_length`, `backtracks` and `shift`); `attempt`
-/// counts the attempts of a step, cut ones (with their `t`) before the accepted one;
-/// `volume_error` is the L1 norm of the constraint residual over the rest volume.
+/// residuals of an attempt have empty `step_length`, `backtracks`, `shift` and
+/// `contact_projected`); `attempt` counts the attempts of a step, cut ones (with their `t`)
+/// before the accepted one; `volume_error` is the L1 norm of the constraint residual over
+/// the rest volume; `contact_projected` is 1 where the barrier's pair Hessians were
+/// PSD-projected (the exact ones did not factorize), else 0.
 pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt\n",
+        "step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,contact_projected\n",
     );
     for s in history {
         for (attempt, cut) in s.cuts.iter().enumerate() {
@@ -25,7 +27,7 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
                 let v = volume_error(&cut.volume_errors, i);
                 let _ = writeln!(
                     out,
-                    "{},{:e},{i},{f:e},{c:e},{v},,,,{}",
+                    "{},{:e},{i},{f:e},{c:e},{v},,,,{},",
                     s.step,
                     cut.t,
                     attempt + 1
@@ -46,10 +48,15 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
                     }
                     _ => Default::default(),
                 };
+            let projected = match (s.shifts.get(i), s.contact_projected.get(i)) {
+                (Some(_), Some(&p)) => u8::from(p).to_string(),
+                (Some(_), None) => "0".to_string(),
+                _ => String::new(),
+            };
             let v = volume_error(&s.volume_errors, i);
             let _ = writeln!(
                 out,
-                "{},{:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt}",
+                "{},{:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt},{projected}",
                 s.step, s.t
             );
         }

@@ -232,6 +232,40 @@ impl<'m> System<'m> {
             .map_or(1.0, |c| c.max_step(x, direction))
     }
 
+    /// Makes the barrier contact's pair Hessians exact (`true`) or PSD-projected in later
+    /// assemblies ([`crate::terms::SurfaceContact::set_exact_hessian`]); returns whether
+    /// the model has barrier contact (without it there is nothing to choose).
+    pub fn set_exact_contact_hessian(&self, exact: bool) -> bool {
+        self.model
+            .surface_contact
+            .as_ref()
+            .map(|c| c.set_exact_hessian(exact))
+            .is_some()
+    }
+
+    /// Re-evaluates the barrier contact's block of the Hessian values at `x` with every
+    /// pair block PSD-projected, leaving the other terms' blocks as they are: the fallback
+    /// when the matrix with the exact blocks does not factorize.
+    pub fn project_contact_hessian(
+        &mut self,
+        x: &[Vec3],
+        level: &LoadLevel,
+    ) -> Result<(), SolverError> {
+        let Some(contact) = &self.model.surface_contact else {
+            return Ok(());
+        };
+        let start = Instant::now();
+        contact.set_exact_hessian(false);
+        let block = self.surface_blocks().start;
+        let mine = &mut self.hessian_values[self.offsets[block]..self.offsets[block + 1]];
+        mine.fill(0.0);
+        contact.evaluate(x, level, None, Some(mine))?;
+        let elapsed = start.elapsed();
+        self.assembly_time += elapsed;
+        self.contact_time += elapsed;
+        Ok(())
+    }
+
     /// Energy (and gradient) of all terms at `x`, without touching the Hessian.
     pub fn energy(
         &mut self,

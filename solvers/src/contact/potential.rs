@@ -115,14 +115,17 @@ impl<'a> Pairs<'a> {
 /// Writes a pair's `12 x 12` block (its nodes, the block) into the pair's slot.
 pub type WriteBlock<'a> = dyn Fn(&[usize; 4], &SMatrix<f64, 12, 12>, &mut [f64]) + Sync + 'a;
 
-/// Where [`BarrierPotential::evaluate`] puts the PSD-projected Hessian block of each pair
-/// (zero beyond `dhat`): `write(nodes, block, slot)` into the pair's own slot, one slot per
-/// candidate pair in the candidates' order (point-triangle pairs, then edge-edge pairs).
+/// Where [`BarrierPotential::evaluate`] puts the Hessian block of each pair (zero beyond
+/// `dhat`): `write(nodes, block, slot)` into the pair's own slot, one slot per candidate
+/// pair in the candidates' order (point-triangle pairs, then edge-edge pairs).
 pub struct HessianBlocks<'a> {
     /// Each pair's part of the output.
     pub slots: Vec<&'a mut [f64]>,
     /// Writes a pair's block into its slot.
     pub write: &'a WriteBlock<'a>,
+    /// Whether each block is projected onto the positive semidefinite cone (IPC's choice)
+    /// or left exact.
+    pub project: bool,
 }
 
 impl Pair {
@@ -152,8 +155,8 @@ impl BarrierPotential {
     }
 
     /// The potential at `x` (as [`Self::energy`]), with its gradient added to `gradient`
-    /// (three entries per node) when given and every pair's PSD-projected Hessian block
-    /// written by `hessian` when given (the blocks' nodes depend on the candidates only, so
+    /// (three entries per node) when given and every pair's Hessian block (PSD-projected
+    /// or exact, as `hessian` asks) written by `hessian` when given (the blocks' nodes depend on the candidates only, so
     /// a fixed candidate set has a fixed sparsity pattern). One parallel pass over the
     /// pairs, each written into its own slot, the energies summed and the gradients
     /// scattered in pair order: the same bits on any number of threads.
@@ -168,9 +171,13 @@ impl BarrierPotential {
     ) -> f64 {
         let pairs = Pairs::new(surface, candidates, rest);
         let derivatives = gradient.is_some() || hessian.is_some();
-        let (slots, write) = match hessian {
-            Some(h) => (h.slots.into_iter().map(Some).collect(), Some(h.write)),
-            None => ((0..candidates.len()).map(|_| None).collect(), None),
+        let (slots, write, project) = match hessian {
+            Some(h) => (
+                h.slots.into_iter().map(Some).collect(),
+                Some(h.write),
+                h.project,
+            ),
+            None => ((0..candidates.len()).map(|_| None).collect(), None, true),
         };
         let shares = pairs.map_with(x, slots, |pair, y, slot| {
             let energy = self.pair_energy(pair, y);
@@ -179,9 +186,11 @@ impl BarrierPotential {
             }
             let local = self.local(pair, y);
             if let (Some(slot), Some(write)) = (slot, write) {
-                let block = local
-                    .as_ref()
-                    .map_or_else(SMatrix::zeros, |l| project_to_psd(&l.hessian));
+                let block = match &local {
+                    None => SMatrix::zeros(),
+                    Some(l) if project => project_to_psd(&l.hessian),
+                    Some(l) => l.hessian,
+                };
                 write(&pair.nodes, &block, slot);
             }
             (pair.nodes, energy, local.map(|l| l.gradient))
@@ -307,6 +316,7 @@ impl BarrierPotential {
         let blocks = HessianBlocks {
             slots: values.chunks_mut(LEN).collect(),
             write: &copy,
+            project: true,
         };
         self.evaluate(surface, candidates, rest, x, None, Some(blocks));
         let nodes = Self::pair_nodes(surface, candidates, rest);

@@ -28,6 +28,14 @@ impl Default for ShiftSchedule {
 }
 
 impl ShiftSchedule {
+    /// The unshifted attempt only: a failure is reported as
+    /// [`LinearError::RegularizationFailed`] after one attempt.
+    pub const NONE: Self = Self {
+        initial: 1e-8,
+        growth: 10.0,
+        max_attempts: 1,
+    };
+
     /// The absolute shifts to try, starting with zero.
     pub fn shifts(&self, scale: f64) -> impl Iterator<Item = f64> + '_ {
         (0..self.max_attempts).map(move |k| match k {

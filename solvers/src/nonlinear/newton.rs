@@ -7,7 +7,7 @@
 use crate::assembly::{Evaluation, System};
 use crate::error::SolverError;
 use crate::linear::NearNullSpace;
-use crate::linear::{CholeskySolver, ShiftSchedule};
+use crate::linear::{CholeskySolver, LinearError, ShiftSchedule};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
 use crate::nonlinear::krylov::{solve_stiffness, StiffnessPreconditioner};
@@ -114,34 +114,30 @@ impl Newton {
         rhs: &mut [f64],
         (force, target): (f64, f64),
         near_null_space: impl FnOnce() -> NearNullSpace,
+        shifts: &ShiftSchedule,
         report: &mut StepReport,
-    ) -> Result<(f64, usize), SolverError> {
-        let error = |e: crate::linear::LinearError| SolverError::Linear(e.to_string());
+    ) -> Result<(f64, usize), LinearError> {
         match &mut self.linear {
             Linear::Direct(cholesky) => {
                 report.factor_nnz = cholesky.report().factor_nnz;
                 let start = Instant::now();
-                let shift = cholesky
-                    .factorize_with_shifts(k, &ShiftSchedule::default())
-                    .map_err(error)?;
+                let shift = cholesky.factorize_with_shifts(k, shifts);
                 report.timings.factorization += start.elapsed();
                 report.factorizations += 1;
+                let shift = shift?;
                 let start = Instant::now();
-                cholesky.solve_in_place(rhs).map_err(error)?;
+                cholesky.solve_in_place(rhs)?;
                 report.timings.solve += start.elapsed();
                 Ok((shift, 0))
             }
             Linear::Iterative(settings, forcing, preconditioner) => {
                 let start = Instant::now();
-                preconditioner
-                    .update(settings.preconditioner, k, near_null_space)
-                    .map_err(error)?;
+                preconditioner.update(settings.preconditioner, k, near_null_space)?;
                 report.timings.factorization += start.elapsed();
                 let start = Instant::now();
                 let eta = forcing.next(force, target);
                 let (x, iterations) =
-                    solve_stiffness(settings, k, preconditioner.get().map_err(error)?, rhs, eta)
-                        .map_err(error)?;
+                    solve_stiffness(settings, k, preconditioner.get()?, rhs, eta)?;
                 rhs.copy_from_slice(&x);
                 report.timings.solve += start.elapsed();
                 Ok((0.0, iterations))
@@ -261,13 +257,19 @@ impl Newton {
                     None => self.reusable = false,
                 }
             }
+            // The barrier's exact Hessian first (quadratic convergence), projected where that
+            // does not factorize (the direct path only: an iterative solve cannot tell).
+            let exact =
+                matches!(self.linear, Linear::Direct(_)) && system.set_exact_contact_hessian(true);
+            let linearized = linearize(system, x, target);
+            system.set_exact_contact_hessian(false);
             let Linearized {
                 eval,
                 d_fixed,
                 residual,
                 mut rhs,
-                k,
-            } = linearize(system, x, target)?;
+                mut k,
+            } = linearized?;
             let force = norm(&residual);
             report.force_residual = force;
             if !force.is_finite() {
@@ -280,13 +282,38 @@ impl Newton {
             report.timings.assembly += system.take_assembly_time();
             report.timings.contact += system.take_contact_time();
 
-            let (shift, linear_iterations) = self.solve_linear(
+            let tolerances = (force, target.force_tolerance);
+            let near_null_space = || NearNullSpace::rigid_body(dofs.free(), x);
+            let shifts = if exact {
+                ShiftSchedule::NONE
+            } else {
+                ShiftSchedule::default()
+            };
+            let solved = self.solve_linear(
                 k.as_ref(),
                 &mut rhs,
-                (force, target.force_tolerance),
-                || NearNullSpace::rigid_body(dofs.free(), x),
+                tolerances,
+                near_null_space,
+                &shifts,
                 report,
-            )?;
+            );
+            let projected =
+                matches!(solved, Err(LinearError::RegularizationFailed { .. })) && exact;
+            let (shift, linear_iterations) = if projected {
+                system.project_contact_hessian(x, &target.level)?;
+                (rhs, k) = newton_matrix(system, &residual, &d_fixed)?;
+                self.solve_linear(
+                    k.as_ref(),
+                    &mut rhs,
+                    tolerances,
+                    near_null_space,
+                    &ShiftSchedule::default(),
+                    report,
+                )
+            } else {
+                solved
+            }
+            .map_err(|e| SolverError::Linear(e.to_string()))?;
 
             let mut direction = d_fixed.clone();
             dofs.scatter(&rhs, &mut direction);
@@ -344,6 +371,7 @@ impl Newton {
                 backtracks,
                 regularization: shift,
                 linear_iterations,
+                contact_projected: projected,
                 ..IterationReport::default()
             });
         }
@@ -365,6 +393,21 @@ pub struct Linearized {
     pub k: SparseColMat<usize, f64>,
 }
 
+/// The Newton right-hand side `-r - K_fc d_fixed` (free residual `r`, prescribed motion
+/// `d_fixed`) and the free matrix `K_ff`, from the system's assembled Hessian values (the
+/// saddle-point Newton's force block too).
+pub(crate) fn newton_matrix(
+    system: &System<'_>,
+    residual: &[f64],
+    d_fixed: &[f64],
+) -> Result<(Vec<f64>, SparseColMat<usize, f64>), SolverError> {
+    let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
+    system
+        .hessian
+        .add_coupling(&system.hessian_values, d_fixed, -1.0, &mut rhs);
+    Ok((rhs, system.hessian.matrix(&system.hessian_values)?))
+}
+
 /// Assembles the Newton system of `system` at `x` for `target`.
 pub fn linearize(
     system: &mut System<'_>,
@@ -374,11 +417,7 @@ pub fn linearize(
     let d_fixed = gap(x, &target.prescribed, 3 * x.len());
     let eval = system.assemble(x, &target.level, None)?;
     let residual = system.model.dofs.gather(&eval.gradient);
-    let mut rhs: Vec<f64> = residual.iter().map(|r| -r).collect();
-    system
-        .hessian
-        .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs);
-    let k = system.hessian.matrix(&system.hessian_values)?;
+    let (rhs, k) = newton_matrix(system, &residual, &d_fixed)?;
     Ok(Linearized {
         eval,
         d_fixed,

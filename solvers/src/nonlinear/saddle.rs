@@ -13,10 +13,13 @@
 
 use crate::assembly::System;
 use crate::error::SolverError;
-use crate::linear::{CholeskySolver, KktOptions, KktSolver, NearNullSpace, ShiftSchedule};
+use crate::linear::{
+    CholeskySolver, KktOptions, KktSolver, LinearError, NearNullSpace, ShiftSchedule,
+};
 use crate::model::NonlinearScheme;
 use crate::nonlinear::forcing::Forcing;
 use crate::nonlinear::krylov::{solve_saddle, SaddleSystem, StiffnessPreconditioner};
+use crate::nonlinear::newton::newton_matrix;
 use crate::nonlinear::report::{IterationReport, StepReport};
 use crate::nonlinear::target::{
     add_scaled, gap, max_abs, norm, remaining_gap, snap, volume_error, StepTarget,
@@ -266,13 +269,9 @@ impl SaddleNewton {
         constraints.values(x, &mut phi)?;
         let theta = self.theta(&phi, p);
         let sigma_f = system.model.dofs.gather(&sigma);
-        let mut rhs_x: Vec<f64> = sigma_f.iter().map(|s| -s).collect();
-        system
-            .hessian
-            .add_coupling(&system.hessian_values, &d_fixed, -1.0, &mut rhs_x);
+        let (rhs_x, k) = newton_matrix(system, &sigma_f, &d_fixed)?;
         let mut rhs_p: Vec<f64> = theta.iter().map(|t| -t).collect();
         jacobian.add_coupling(&system.jacobian_values, &d_fixed, -1.0, &mut rhs_p);
-        let k = system.hessian.matrix(&system.hessian_values)?;
         let g = jacobian.matrix(&system.jacobian_values)?;
         Ok(Linearized {
             d_fixed,
@@ -337,15 +336,21 @@ impl SaddleNewton {
                     Reuse::Refused => self.reusable = false,
                 }
             }
+            // The barrier's exact Hessian first (quadratic convergence), projected where the
+            // matrix then has the wrong inertia (direct paths only).
+            let exact = !matches!(self.linear, Linear::Iterative(_))
+                && system.set_exact_contact_hessian(true);
+            let linearized = self.linearize(system, x, p, target);
+            system.set_exact_contact_hessian(false);
             let Linearized {
                 d_fixed,
                 sigma_f,
                 theta,
-                rhs_x,
+                mut rhs_x,
                 rhs_p,
                 k,
                 g,
-            } = self.linearize(system, x, p, target)?;
+            } = linearized?;
             let force = norm(&sigma_f);
             let constraint = max_abs(&scaled(&theta));
             let volume_error = volume_error(&theta, &volumes);
@@ -372,7 +377,30 @@ impl SaddleNewton {
                 state.eta = state.forcing.next(b, 0.0);
             }
             let free = system.model.dofs.free();
-            let shift = self.factorize(k, g, || NearNullSpace::rigid_body(free, x), report)?;
+            let near_null_space = || NearNullSpace::rigid_body(free, x);
+            let (shift, projected) = if exact {
+                match self.factorize(k, g.clone(), near_null_space, &ShiftSchedule::NONE, report) {
+                    Err(LinearError::RegularizationFailed { .. }) => {
+                        system.project_contact_hessian(x, &target.level)?;
+                        let k;
+                        (rhs_x, k) = newton_matrix(system, &sigma_f, &d_fixed)?;
+                        let shift = self.factorize(
+                            k,
+                            g,
+                            near_null_space,
+                            &ShiftSchedule::default(),
+                            report,
+                        );
+                        (shift, true)
+                    }
+                    shift => (shift, false),
+                }
+            } else {
+                let shift =
+                    self.factorize(k, g, near_null_space, &ShiftSchedule::default(), report);
+                (shift, false)
+            };
+            let shift = shift.map_err(linear_error)?;
             let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
 
             let mut direction = d_fixed.clone();
@@ -473,6 +501,7 @@ impl SaddleNewton {
                     _ => 0,
                 },
                 reused: false,
+                contact_projected: projected,
             });
         }
         if let Some(gap) = remaining_gap(x, target) {
@@ -560,33 +589,45 @@ impl SaddleNewton {
         Ok(Reuse::Accepted)
     }
 
-    /// Factorizes the KKT matrix (shifting `K` until the inertia is right); returns the
-    /// shift used.
+    /// Factorizes the KKT matrix, shifting `K` along `shifts` until the inertia is right;
+    /// returns the shift used. A failed factorization is counted and timed too.
     fn factorize(
         &mut self,
         k: SparseColMat<usize, f64>,
         g: SparseColMat<usize, f64>,
         near_null_space: impl FnOnce() -> NearNullSpace,
+        shifts: &ShiftSchedule,
         report: &mut StepReport,
-    ) -> Result<f64, SolverError> {
+    ) -> Result<f64, LinearError> {
         let start = Instant::now();
-        let shift = match &mut self.linear {
-            Linear::Direct(kkt) => {
-                report.factor_nnz = kkt.report().factor_nnz;
-                kkt.factorize_with_shifts(
-                    k.as_ref(),
-                    g.as_ref(),
-                    self.compliance.as_ref().map(|c| c.as_ref()),
-                    &ShiftSchedule::default(),
-                )
-                .map_err(linear_error)?
-            }
+        let shift = self.factorize_unrecorded(k, g, near_null_space, shifts);
+        report.timings.factorization += start.elapsed();
+        match &self.linear {
+            Linear::Direct(kkt) => report.factor_nnz = kkt.report().factor_nnz,
+            Linear::Schur(schur) => report.factor_nnz = schur.cholesky.report().factor_nnz,
+            Linear::Iterative(_) => return shift,
+        }
+        report.factorizations += 1;
+        shift
+    }
+
+    /// [`Self::factorize`] without its report.
+    fn factorize_unrecorded(
+        &mut self,
+        k: SparseColMat<usize, f64>,
+        g: SparseColMat<usize, f64>,
+        near_null_space: impl FnOnce() -> NearNullSpace,
+        shifts: &ShiftSchedule,
+    ) -> Result<f64, LinearError> {
+        Ok(match &mut self.linear {
+            Linear::Direct(kkt) => kkt.factorize_with_shifts(
+                k.as_ref(),
+                g.as_ref(),
+                self.compliance.as_ref().map(|c| c.as_ref()),
+                shifts,
+            )?,
             Linear::Schur(schur) => {
-                report.factor_nnz = schur.cholesky.report().factor_nnz;
-                let shift = schur
-                    .cholesky
-                    .factorize_with_shifts(k.as_ref(), &ShiftSchedule::default())
-                    .map_err(linear_error)?;
+                let shift = schur.cholesky.factorize_with_shifts(k.as_ref(), shifts)?;
                 let (m, nf) = (g.nrows(), g.ncols());
                 let mut rows = DMatrix::<f64>::zeros(m, nf);
                 for col in 0..nf {
@@ -601,10 +642,7 @@ impl SaddleNewton {
                 let mut z = DMatrix::<f64>::zeros(nf, m);
                 for i in 0..m {
                     let mut col: Vec<f64> = rows.row(i).iter().copied().collect();
-                    schur
-                        .cholesky
-                        .solve_in_place(&mut col)
-                        .map_err(linear_error)?;
+                    schur.cholesky.solve_in_place(&mut col)?;
                     z.set_column(i, &DVector::from_vec(col));
                 }
                 let mut s = &rows * &z;
@@ -619,18 +657,12 @@ impl SaddleNewton {
             Linear::Iterative(state) => {
                 state
                     .p_k
-                    .update(state.settings.preconditioner, k.as_ref(), near_null_space)
-                    .map_err(linear_error)?;
+                    .update(state.settings.preconditioner, k.as_ref(), near_null_space)?;
                 state.k = k;
                 state.g = g;
                 0.0
             }
-        };
-        report.timings.factorization += start.elapsed();
-        if !matches!(self.linear, Linear::Iterative(_)) {
-            report.factorizations += 1;
-        }
-        Ok(shift)
+        })
     }
 
     /// Solves `[[K, G^T], [G, -C]] (dx, dp) = (f, h)` with the current factorization.

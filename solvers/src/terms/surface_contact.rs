@@ -60,13 +60,15 @@ pub struct SurfaceContactSummary {
     pub body_pair_forces: Vec<Vec3>,
 }
 
-/// The pairs of the current pattern, the stiffness, and how often the pattern changed.
+/// The pairs of the current pattern, the stiffness, how often the pattern changed, and
+/// whether the pair Hessians are exact or PSD-projected.
 #[derive(Debug, Clone, Default)]
 struct Active {
     candidates: Candidates,
     kappa: f64,
     previous_min_distance: f64,
     rebuilds: usize,
+    exact_hessian: bool,
 }
 
 /// The barrier contact term of a mesh's boundary surface (and of meshed obstacles).
@@ -263,6 +265,17 @@ impl SurfaceContact {
         true
     }
 
+    /// Makes the Hessians of later evaluations exact (`true`) or, as IPC does, every pair's
+    /// block projected onto the positive semidefinite cone (`false`, the default). The
+    /// projection keeps Newton's matrix definite but slows its convergence to linear; the
+    /// solvers try the exact Hessian first and project when it fails to factorize.
+    pub fn set_exact_hessian(&self, exact: bool) {
+        self.active
+            .write()
+            .unwrap_or_else(|e| e.into_inner())
+            .exact_hessian = exact;
+    }
+
     /// How many times the pairs (and so the pattern) changed.
     pub fn rebuilds(&self) -> usize {
         self.read().rebuilds
@@ -419,12 +432,12 @@ impl EnergyTerm for SurfaceContact {
         let x = self.rigid.extend(body);
         // With a Hessian, the pattern's pairs (updated at this state); else the trial's own.
         let (guard, own);
-        let candidates = if hessian.is_some() {
+        let (candidates, project) = if hessian.is_some() {
             guard = self.read();
-            &guard.candidates
+            (&guard.candidates, !guard.exact_hessian)
         } else {
             own = self.candidates(&x);
-            &own
+            (&own, true)
         };
         // Each pair's block goes straight into its part of the pattern's values.
         let rows = self.rows();
@@ -442,6 +455,7 @@ impl EnergyTerm for SurfaceContact {
             HessianBlocks {
                 slots,
                 write: &write,
+                project,
             }
         });
         let evaluate = |g: Option<&mut [f64]>| {

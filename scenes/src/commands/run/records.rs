@@ -101,6 +101,11 @@ pub(super) fn record(
         step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
         backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
         shifts: report.iterations.iter().map(|i| i.regularization).collect(),
+        contact_projected: report
+            .iterations
+            .iter()
+            .map(|i| i.contact_projected)
+            .collect(),
         volume_change: mesh.total_volume_at(&state.positions) / mesh.rest_volume() - 1.0,
         inverted_tets,
         kinetic_energy: energies.kinetic,
