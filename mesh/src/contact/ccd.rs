@@ -29,8 +29,8 @@
 //! whose boxes would otherwise be refined along the whole motion.
 //!
 //! The guarantee, in floating point: when a pair comes within `min_separation` (in the
-//! largest coordinate, which holds the Euclidean ball) at some time `t*`, a time of impact
-//! `toi <= t*` is returned; no pair closer than that is missed. A reported time may be a
+//! largest coordinate, which holds the Euclidean ball) at some time `t* < t_max`, a time of
+//! impact `toi <= t*` is returned; no pair closer than that is missed. A reported time may be a
 //! false positive, but only of two kinds: the pair does come within `1.1 min_separation +
 //! tolerance` (per coordinate) at some time of the reporting box, or the iteration limit was
 //! reached (then the earliest time still undecided is returned).
@@ -56,6 +56,10 @@ pub struct CcdSettings {
     pub tolerance: f64,
     /// Boxes examined at most per query before the earliest undecided time is returned.
     pub max_iterations: usize,
+    /// The end of the searched times, in `(0, 1]`: an impact at or after it is not looked
+    /// for (`None` is returned). A caller that wants the earliest impact of many pairs passes
+    /// the earliest found so far, and the later queries stop there.
+    pub t_max: f64,
 }
 
 impl Default for CcdSettings {
@@ -64,6 +68,7 @@ impl Default for CcdSettings {
             min_separation: 0.0,
             tolerance: 1e-6,
             max_iterations: 100_000,
+            t_max: 1.0,
         }
     }
 }
@@ -284,6 +289,10 @@ impl Pair {
         });
         let mut iterations = 0;
         while let Some(b) = heap.pop() {
+            // Earliest first: every box left starts at or after this one.
+            if b.t[0] >= settings.t_max {
+                return None;
+            }
             if self.triangle && b.u[0] + b.v[0] > 1.0 {
                 continue;
             }

@@ -8,9 +8,11 @@ use crate::error::SolverError;
 use crate::problem::schedule::LoadLevel;
 use isochor_mesh::contact::{
     contact_candidates, edge_edge_ccd, edge_edge_squared_distance, point_triangle_ccd,
-    point_triangle_squared_distance,
+    point_triangle_squared_distance, CcdSettings,
 };
 use isochor_mesh::Vec3;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The fraction of the time of impact a line search may go: the pair keeps a fifth of its
 /// gap (IPC takes 0.8 as well).
@@ -28,34 +30,64 @@ impl SurfaceContact {
         // over the step (the distance is 1-Lipschitz in each side's motion): no CCD needed.
         let moves = |n: usize| (x1[n] - x0[n]).norm();
         let cannot_touch = |reach: f64, d_sq: f64| reach * reach < d_sq;
-        let pt = swept.point_triangle.iter().filter_map(|&[p, t]| {
+        // The earliest impact found so far (as bits: for non-negative doubles their order is
+        // the numbers'); every query stops there, so the pairs are searched in parallel and
+        // the minimum is the same on any number of threads (a query cut short at `t_max` had
+        // no earlier impact).
+        let earliest = AtomicU64::new(f64::INFINITY.to_bits());
+        let settings = || CcdSettings {
+            t_max: f64::from_bits(earliest.load(Ordering::Relaxed)).min(1.0),
+            ..self.ccd
+        };
+        let found = |toi: Option<f64>| {
+            if let Some(t) = toi {
+                earliest.fetch_min(t.to_bits(), Ordering::Relaxed);
+            }
+        };
+        swept.point_triangle.par_iter().for_each(|&[p, t]| {
             let [a, b, c] = tris[t];
             let reach = moves(p) + moves(a).max(moves(b)).max(moves(c));
             if cannot_touch(
                 reach,
                 point_triangle_squared_distance(&x0[p], &x0[a], &x0[b], &x0[c]),
             ) {
-                return None;
+                return;
             }
-            point_triangle_ccd(
-                &x0[p], &x0[a], &x0[b], &x0[c], &x1[p], &x1[a], &x1[b], &x1[c], &self.ccd,
-            )
+            found(point_triangle_ccd(
+                &x0[p],
+                &x0[a],
+                &x0[b],
+                &x0[c],
+                &x1[p],
+                &x1[a],
+                &x1[b],
+                &x1[c],
+                &settings(),
+            ));
         });
-        let ee = swept.edge_edge.iter().filter_map(|&[i, j]| {
+        swept.edge_edge.par_iter().for_each(|&[i, j]| {
             let ([a0, a1], [b0, b1]) = (edges[i], edges[j]);
             let reach = moves(a0).max(moves(a1)) + moves(b0).max(moves(b1));
             if cannot_touch(
                 reach,
                 edge_edge_squared_distance(&x0[a0], &x0[a1], &x0[b0], &x0[b1]),
             ) {
-                return None;
+                return;
             }
-            edge_edge_ccd(
-                &x0[a0], &x0[a1], &x0[b0], &x0[b1], &x1[a0], &x1[a1], &x1[b0], &x1[b1], &self.ccd,
-            )
+            found(edge_edge_ccd(
+                &x0[a0],
+                &x0[a1],
+                &x0[b0],
+                &x0[b1],
+                &x1[a0],
+                &x1[a1],
+                &x1[b0],
+                &x1[b1],
+                &settings(),
+            ));
         });
-        pt.chain(ee)
-            .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))))
+        let earliest = f64::from_bits(earliest.into_inner());
+        earliest.is_finite().then_some(earliest)
     }
 
     /// The largest step `alpha` in `(0, 1]` along `direction` (three entries per body node)
