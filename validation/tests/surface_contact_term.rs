@@ -1,7 +1,8 @@
 //! The surface-contact energy term against the barrier potential it wraps and against finite
 //! differences: two cubes 1 mm apart within the barrier's reach, perturbed at random. Its
-//! gradient is the central difference of its energy, and the Hessian it writes into its own
-//! pattern is the potential's PSD-projected Hessian at the term's stiffness.
+//! gradient is the central difference of its energy, the Hessian it writes into its own
+//! pattern is the potential's PSD-projected Hessian at the term's stiffness, and its exact
+//! Hessian (`SurfaceContact::set_exact_hessian`) the central difference of its gradient.
 
 use isochor_mesh::contact::{contact_candidates, ContactSurface, PairFilter};
 use isochor_mesh::element::ElementMesh;
@@ -99,5 +100,41 @@ proptest! {
             theirs[(r, c)] += kappa * v;
         }
         prop_assert!((&ours - &theirs).norm() <= 1e-10 * theirs.norm(), "{} against {}", ours.norm(), theirs.norm());
+
+        // The exact Hessian (what Newton factorizes first) against central differences of
+        // the gradient, column by column.
+        term.set_exact_hessian(true);
+        let mut exact_values = vec![0.0; pattern.len()];
+        term.evaluate(&x, &LoadLevel::FULL, None, Some(&mut exact_values)).unwrap();
+        term.set_exact_hessian(false);
+        let mut exact = DMatrix::<f64>::zeros(n, n);
+        for (&(r, c), v) in pattern.iter().zip(&exact_values) {
+            exact[(r, c)] += v;
+        }
+        if pattern.iter().all(|&(r, c)| r >= c) {
+            // A lower-triangle pattern: mirror it.
+            exact = &exact + exact.transpose() - DMatrix::from_diagonal(&exact.diagonal());
+        }
+        let gradient_at = |y: &[Vec3]| {
+            let mut g = vec![0.0; n];
+            term.evaluate(y, &LoadLevel::FULL, Some(&mut g), None).unwrap();
+            g
+        };
+        let scale = exact.amax();
+        prop_assert!(scale > 0.0);
+        let h = 1e-8;
+        for dof in 0..n {
+            let (mut plus, mut minus) = (x.clone(), x.clone());
+            plus[dof / 3][dof % 3] += h;
+            minus[dof / 3][dof % 3] -= h;
+            let (gp, gm) = (gradient_at(&plus), gradient_at(&minus));
+            for row in 0..n {
+                let fd = (gp[row] - gm[row]) / (2.0 * h);
+                prop_assert!(
+                    (fd - exact[(row, dof)]).abs() <= 1e-5 * scale,
+                    "({row}, {dof}): {fd} against {}", exact[(row, dof)]
+                );
+            }
+        }
     }
 }
