@@ -234,13 +234,13 @@ impl<'m> System<'m> {
 
     /// Makes the barrier contact's pair Hessians exact (`true`) or PSD-projected in later
     /// assemblies ([`crate::terms::SurfaceContact::set_exact_hessian`]); returns whether
-    /// the model has barrier contact (without it there is nothing to choose).
+    /// the pattern holds contact pairs (without any there is nothing to choose, and a
+    /// failed unshifted factorization would be one factorization lost).
     pub fn set_exact_contact_hessian(&self, exact: bool) -> bool {
-        self.model
-            .surface_contact
-            .as_ref()
-            .map(|c| c.set_exact_hessian(exact))
-            .is_some()
+        self.model.surface_contact.as_ref().is_some_and(|c| {
+            c.set_exact_hessian(exact);
+            c.num_pairs() > 0
+        })
     }
 
     /// Re-evaluates the barrier contact's block of the Hessian values at `x` with every

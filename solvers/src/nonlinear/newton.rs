@@ -298,7 +298,7 @@ impl Newton {
                 report,
             );
             let projected =
-                matches!(solved, Err(LinearError::RegularizationFailed { .. })) && exact;
+                exact && matches!(solved, Err(LinearError::RegularizationFailed { .. }));
             let (shift, linear_iterations) = if projected {
                 system.project_contact_hessian(x, &target.level)?;
                 (rhs, k) = newton_matrix(system, &residual, &d_fixed)?;

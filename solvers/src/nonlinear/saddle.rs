@@ -378,28 +378,20 @@ impl SaddleNewton {
             }
             let free = system.model.dofs.free();
             let near_null_space = || NearNullSpace::rigid_body(free, x);
-            let (shift, projected) = if exact {
-                match self.factorize(k, g.clone(), near_null_space, &ShiftSchedule::NONE, report) {
-                    Err(LinearError::RegularizationFailed { .. }) => {
-                        system.project_contact_hessian(x, &target.level)?;
-                        let k;
-                        (rhs_x, k) = newton_matrix(system, &sigma_f, &d_fixed)?;
-                        let shift = self.factorize(
-                            k,
-                            g,
-                            near_null_space,
-                            &ShiftSchedule::default(),
-                            report,
-                        );
-                        (shift, true)
-                    }
-                    shift => (shift, false),
-                }
+            let shifts = if exact {
+                ShiftSchedule::NONE
             } else {
-                let shift =
-                    self.factorize(k, g, near_null_space, &ShiftSchedule::default(), report);
-                (shift, false)
+                ShiftSchedule::default()
             };
+            let g_again = exact.then(|| g.clone());
+            let mut shift = self.factorize(k, g, near_null_space, &shifts, report);
+            let projected = exact && matches!(shift, Err(LinearError::RegularizationFailed { .. }));
+            if let (true, Some(g)) = (projected, g_again) {
+                system.project_contact_hessian(x, &target.level)?;
+                let k;
+                (rhs_x, k) = newton_matrix(system, &sigma_f, &d_fixed)?;
+                shift = self.factorize(k, g, near_null_space, &ShiftSchedule::default(), report);
+            }
             let shift = shift.map_err(linear_error)?;
             let (dx, dp) = self.solve_factorized(rhs_x, rhs_p, report)?;
 
