@@ -47,6 +47,10 @@ while IFS='|' read -r row scene variant settings paper_s paper_it; do
     fi
     python3 -c "$format_row" "$row" "$paper_s" "$paper_it" <<<"$json"
 done <<'ROWS'
+Cloth-Body, SNH lambda 400|garment|snh-400||12.10|21.32
+Cloth-Body, SNH lambda 40|garment|snh-40||12.93|23.09
+Cloth-Body, ours lambda 120, beta 6|garment|ours-120||12.82|17.98
+Cloth-Body, ours lambda 120, beta 6, lambda_e 100|garment|ours-120-epidermis||14.63|19.18
 Puck, SNH lambda 40|bulge-puck|standard-0.4545|model=stable-neo-hookean steps=50|1.55|3.00
 Puck, SNH lambda 400|bulge-puck|standard-0.495|model=stable-neo-hookean steps=50|1.58|3.14
 Puck, ours beta 0|bulge-puck|zonal|beta=0 steps=50|2.25|4.00

@@ -33,10 +33,10 @@ pub struct StepRecord {
     pub backtracks: Vec<usize>,
     /// Diagonal shift added to the stiffness per iteration (0 when none was needed).
     pub shifts: Vec<f64>,
-    /// Per iteration: whether the barrier contact's pair Hessians were PSD-projected (the
-    /// matrix with the exact ones did not factorize).
+    /// Per iteration: whether the barrier contact's pair and the cloth's element Hessians
+    /// were PSD-projected (the matrix with the exact ones did not factorize).
     #[serde(default)]
-    pub contact_projected: Vec<bool>,
+    pub hessian_projected: Vec<bool>,
     /// Whole-body volume change (deformed/rest - 1) of the accepted state.
     pub volume_change: f64,
     /// Inverted tets in the accepted state.
@@ -135,6 +135,18 @@ pub struct CutRecord {
     /// Volume error per iteration, then the last one.
     #[serde(default)]
     pub volume_errors: Vec<f64>,
+    /// Accepted step length per iteration.
+    #[serde(default)]
+    pub step_lengths: Vec<f64>,
+    /// Line-search backtracks per iteration.
+    #[serde(default)]
+    pub backtracks: Vec<usize>,
+    /// Diagonal shift added to the stiffness per iteration.
+    #[serde(default)]
+    pub shifts: Vec<f64>,
+    /// Per iteration: whether the Hessians were PSD-projected (as [`StepRecord`]'s).
+    #[serde(default)]
+    pub hessian_projected: Vec<bool>,
     /// Why it failed.
     pub error: String,
 }

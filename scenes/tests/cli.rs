@@ -347,7 +347,7 @@ fn a_failed_run_logs_the_failed_step() {
     let mut lines = log.lines();
     assert_eq!(
         lines.next(),
-        Some("step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,contact_projected")
+        Some("step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,hessian_projected")
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     // Two iterations of step 1, then its final residuals (no step length, no shift).

@@ -83,7 +83,7 @@ fn stacked_cubes_share_the_compression() {
                 .report
                 .iterations
                 .iter()
-                .filter(|i| i.contact_projected)
+                .filter(|i| i.hessian_projected)
                 .count();
         })
         .unwrap();

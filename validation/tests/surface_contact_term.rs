@@ -2,7 +2,7 @@
 //! differences: two cubes 1 mm apart within the barrier's reach, perturbed at random. Its
 //! gradient is the central difference of its energy, the Hessian it writes into its own
 //! pattern is the potential's PSD-projected Hessian at the term's stiffness, and its exact
-//! Hessian (`SurfaceContact::set_exact_hessian`) the central difference of its gradient.
+//! Hessian (`EnergyTerm::project_hessian(false)`) the central difference of its gradient.
 
 use isochor_mesh::contact::{contact_candidates, ContactSurface, PairFilter};
 use isochor_mesh::element::ElementMesh;
@@ -103,10 +103,10 @@ proptest! {
 
         // The exact Hessian (what Newton factorizes first) against central differences of
         // the gradient, column by column.
-        term.set_exact_hessian(true);
+        term.project_hessian(false);
         let mut exact_values = vec![0.0; pattern.len()];
         term.evaluate(&x, &LoadLevel::FULL, None, Some(&mut exact_values)).unwrap();
-        term.set_exact_hessian(false);
+        term.project_hessian(true);
         let mut exact = DMatrix::<f64>::zeros(n, n);
         for (&(r, c), v) in pattern.iter().zip(&exact_values) {
             exact[(r, c)] += v;

@@ -41,6 +41,7 @@ pub const BUILTIN: &[(&str, &str)] = builtin_scenes![
     "squashed-tube",
     "grasp",
     "finger-volume",
+    "garment",
 ];
 
 /// The TOML text of a built-in scene.

@@ -8,60 +8,78 @@ use std::path::Path;
 
 /// `iterations.csv`: one row per Newton iteration of every attempt of every step (the final
 /// residuals of an attempt have empty `step_length`, `backtracks`, `shift` and
-/// `contact_projected`); `attempt` counts the attempts of a step, cut ones (with their `t`)
+/// `hessian_projected`); `attempt` counts the attempts of a step, cut ones (with their `t`)
 /// before the accepted one; `volume_error` is the L1 norm of the constraint residual over
-/// the rest volume; `contact_projected` is 1 where the barrier's pair Hessians were
-/// PSD-projected (the exact ones did not factorize), else 0.
+/// the rest volume; `hessian_projected` is 1 where the barrier's pair and the cloth's element
+/// Hessians were PSD-projected (the exact ones did not factorize), else 0.
 pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), SceneError> {
     let mut out = String::from(
-        "step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,contact_projected\n",
+        "step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,hessian_projected\n",
     );
     for s in history {
-        for (attempt, cut) in s.cuts.iter().enumerate() {
-            for (i, (f, c)) in cut
-                .force_residuals
-                .iter()
-                .zip(&cut.constraint_residuals)
-                .enumerate()
-            {
-                let v = volume_error(&cut.volume_errors, i);
-                let _ = writeln!(
-                    out,
-                    "{},{:e},{i},{f:e},{c:e},{v},,,,{},",
-                    s.step,
-                    cut.t,
-                    attempt + 1
-                );
-            }
+        let cuts = s.cuts.iter().map(|c| {
+            let iterations = Iterations {
+                force: &c.force_residuals,
+                constraint: &c.constraint_residuals,
+                volume: &c.volume_errors,
+                lengths: &c.step_lengths,
+                backtracks: &c.backtracks,
+                shifts: &c.shifts,
+                projected: &c.hessian_projected,
+            };
+            (c.t, iterations)
+        });
+        let accepted = Iterations {
+            force: &s.force_residuals,
+            constraint: &s.constraint_residuals,
+            volume: &s.volume_errors,
+            lengths: &s.step_lengths,
+            backtracks: &s.backtracks,
+            shifts: &s.shifts,
+            projected: &s.hessian_projected,
+        };
+        for (attempt, (t, iterations)) in cuts.chain([(s.t, accepted)]).enumerate() {
+            iterations.write(&mut out, s.step, t, attempt + 1);
         }
-        let attempt = s.cuts.len() + 1;
-        for (i, (f, c)) in s
-            .force_residuals
-            .iter()
-            .zip(&s.constraint_residuals)
-            .enumerate()
-        {
-            let (len, back, shift) =
-                match (s.step_lengths.get(i), s.backtracks.get(i), s.shifts.get(i)) {
-                    (Some(l), Some(b), Some(r)) => {
-                        (format!("{l:e}"), b.to_string(), format!("{r:e}"))
-                    }
-                    _ => Default::default(),
-                };
-            let projected = match (s.shifts.get(i), s.contact_projected.get(i)) {
+    }
+    write_file(path, out.as_bytes())
+}
+
+/// The per-iteration records of one attempt of a step.
+struct Iterations<'a> {
+    force: &'a [f64],
+    constraint: &'a [f64],
+    volume: &'a [f64],
+    lengths: &'a [f64],
+    backtracks: &'a [usize],
+    shifts: &'a [f64],
+    projected: &'a [bool],
+}
+
+impl Iterations<'_> {
+    /// One row per iteration (the last residuals without a step) into `out`.
+    fn write(&self, out: &mut String, step: usize, t: f64, attempt: usize) {
+        for (i, (f, c)) in self.force.iter().zip(self.constraint).enumerate() {
+            let (len, back, shift) = match (
+                self.lengths.get(i),
+                self.backtracks.get(i),
+                self.shifts.get(i),
+            ) {
+                (Some(l), Some(b), Some(r)) => (format!("{l:e}"), b.to_string(), format!("{r:e}")),
+                _ => Default::default(),
+            };
+            let projected = match (self.shifts.get(i), self.projected.get(i)) {
                 (Some(_), Some(&p)) => u8::from(p).to_string(),
                 (Some(_), None) => "0".to_string(),
                 _ => String::new(),
             };
-            let v = volume_error(&s.volume_errors, i);
+            let v = volume_error(self.volume, i);
             let _ = writeln!(
                 out,
-                "{},{:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt},{projected}",
-                s.step, s.t
+                "{step},{t:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt},{projected}"
             );
         }
     }
-    write_file(path, out.as_bytes())
 }
 
 /// The `i`-th volume error, empty if not recorded (a run resumed from an older checkpoint).

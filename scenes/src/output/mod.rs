@@ -80,10 +80,14 @@ pub fn write_run_outputs(
     Ok(())
 }
 
-/// The title of a run's pictures: scene, method and element, and the step at which it
-/// failed.
+/// The title of a run's pictures: scene and variant, method and element, and the step at
+/// which it failed.
 pub fn run_title(result: &RunResult) -> String {
-    let mut title = format!("{} ({}, {})", result.scene, result.method, result.element);
+    let scene = match &result.variant {
+        Some(v) => format!("{} {v}", result.scene),
+        None => result.scene.clone(),
+    };
+    let mut title = format!("{scene} ({}, {})", result.method, result.element);
     if result.error.is_some() {
         title += &match result.failed_step {
             Some(step) => format!(", failed at step {step}"),

@@ -319,7 +319,7 @@ mod tests {
             step_lengths: vec![1.0; residuals.len() - 1],
             backtracks: vec![0; residuals.len() - 1],
             shifts: vec![0.0; residuals.len() - 1],
-            contact_projected: vec![false; residuals.len() - 1],
+            hessian_projected: vec![false; residuals.len() - 1],
             volume_change: 0.0,
             inverted_tets: 0,
             kinetic_energy: (step as f64).sin().abs(),

@@ -41,6 +41,8 @@ const BACKGROUND: RGBColor = WHITE;
 pub const OUTLINE: RGBColor = RGBColor(128, 128, 128);
 /// The obstacles' color (before shading).
 pub const OBSTACLE: RGBColor = RGBColor(190, 190, 200);
+/// The cloths' color (before shading).
+pub const CLOTH: RGBColor = RGBColor(205, 70, 60);
 /// Color bar: `(left, top, right, bottom)` pixels.
 const BAR: (i32, i32, i32, i32) = (690, 80, 712, 560);
 
@@ -57,6 +59,8 @@ pub struct PreviewOptions<'a> {
     pub title: &'a str,
     /// The obstacles' triangles where they stand, drawn in grey (the camera frames the body).
     pub obstacles: &'a [[Vec3; 3]],
+    /// The cloths' triangles where they stand, drawn in red.
+    pub cloths: &'a [[Vec3; 3]],
 }
 
 /// Draws the boundary of `mesh` at `fields.positions` and writes it as a PNG to `path`.
@@ -103,8 +107,10 @@ fn render(
             let color = shade(colormap(value, lo, hi), camera.lambert(&x));
             canvas.fill_triangle(x.map(|p| camera.project(&p)), color);
         }
-        for x in options.obstacles {
-            let color = shade(OBSTACLE, camera.lambert(x).max(0.3));
+        let others = (options.obstacles.iter().map(|x| (x, OBSTACLE)))
+            .chain(options.cloths.iter().map(|x| (x, CLOTH)));
+        for (x, base) in others {
+            let color = shade(base, camera.lambert(x).max(0.3));
             canvas.fill_triangle(x.map(|p| camera.project(&p)), color);
         }
         if options.rest_outline {
@@ -125,14 +131,20 @@ fn render(
             ("sans-serif", 22).into_font(),
         ))
         .map_err(drawing_error)?;
-        let note = match (&camera, options.rest_outline) {
-            (None, _) => "nothing to draw: the body has no extent or no finite position",
-            (Some(_), true) if options.obstacles.is_empty() => {
-                "deformed body; rest shape outlined in grey"
-            }
-            (Some(_), true) => "deformed body; rest shape outlined in grey; obstacles light grey",
-            (Some(_), false) if options.obstacles.is_empty() => "deformed body",
-            (Some(_), false) => "deformed body; obstacles light grey",
+        let note = match &camera {
+            None => "nothing to draw: the body has no extent or no finite position".to_string(),
+            Some(_) => [
+                Some("deformed body"),
+                options
+                    .rest_outline
+                    .then_some("rest shape outlined in grey"),
+                (!options.obstacles.is_empty()).then_some("obstacles light grey"),
+                (!options.cloths.is_empty()).then_some("cloth red"),
+            ]
+            .into_iter()
+            .flatten()
+            .collect::<Vec<_>>()
+            .join("; "),
         };
         root.draw(&Text::new(note, (10, 38), ("sans-serif", 14).into_font()))
             .map_err(drawing_error)?;
@@ -539,6 +551,7 @@ mod tests {
             gravity: None,
             title: "test",
             obstacles: &[],
+            cloths: &[],
         }
     }
 

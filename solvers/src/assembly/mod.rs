@@ -232,38 +232,44 @@ impl<'m> System<'m> {
             .map_or(1.0, |c| c.max_step(x, direction))
     }
 
-    /// Makes the barrier contact's pair Hessians exact (`true`) or PSD-projected in later
-    /// assemblies ([`crate::terms::SurfaceContact::set_exact_hessian`]); returns whether
-    /// the pattern holds contact pairs (without any there is nothing to choose, and a
-    /// failed unshifted factorization would be one factorization lost).
-    pub fn set_exact_contact_hessian(&self, exact: bool) -> bool {
-        self.model.surface_contact.as_ref().is_some_and(|c| {
-            c.set_exact_hessian(exact);
-            c.num_pairs() > 0
-        })
+    /// Makes the element Hessians of the terms that PSD-project them (barrier contact,
+    /// cloth: [`EnergyTerm::project_hessian`]) projected or exact in later assemblies;
+    /// returns whether any term has such blocks now (without any there is nothing to choose,
+    /// and a failed unshifted factorization would be one factorization lost).
+    pub fn set_projected_hessians(&self, projected: bool) -> bool {
+        // Every term is told (no short circuit), then whether any has such blocks.
+        let mut any = false;
+        for term in self.terms() {
+            any |= term.project_hessian(projected);
+        }
+        any
     }
 
-    /// Re-evaluates the barrier contact's block of the Hessian values at `x` with every
-    /// pair block PSD-projected, leaving the other terms' blocks as they are: the fallback
-    /// when the matrix with the exact blocks does not factorize.
-    pub fn project_contact_hessian(
-        &mut self,
-        x: &[Vec3],
-        level: &LoadLevel,
-    ) -> Result<(), SolverError> {
-        let Some(contact) = &self.model.surface_contact else {
-            return Ok(());
-        };
+    /// Re-evaluates at `x` the Hessian blocks of the terms that project theirs, now
+    /// projected, leaving the other terms' blocks as they are: the fallback when the matrix
+    /// with the exact blocks does not factorize.
+    pub fn project_hessians(&mut self, x: &[Vec3], level: &LoadLevel) -> Result<(), SolverError> {
         let start = Instant::now();
-        contact.set_exact_hessian(false);
-        let block = self.surface_blocks().start;
-        let mine = &mut self.hessian_values[self.offsets[block]..self.offsets[block + 1]];
-        mine.fill(0.0);
-        contact.evaluate(x, level, None, Some(mine))?;
-        let elapsed = start.elapsed();
-        self.assembly_time += elapsed;
-        self.contact_time += elapsed;
-        Ok(())
+        let surface = self.surface_blocks();
+        let mut contact_time = Duration::ZERO;
+        let mut values = std::mem::take(&mut self.hessian_values);
+        let result = self.terms().enumerate().try_for_each(|(block, term)| {
+            if !term.project_hessian(true) {
+                return Ok(());
+            }
+            let term_start = Instant::now();
+            let mine = &mut values[self.offsets[block]..self.offsets[block + 1]];
+            mine.fill(0.0);
+            term.evaluate(x, level, None, Some(mine))?;
+            if surface.contains(&block) {
+                contact_time += term_start.elapsed();
+            }
+            Ok(())
+        });
+        self.hessian_values = values;
+        self.assembly_time += start.elapsed();
+        self.contact_time += contact_time;
+        result
     }
 
     /// Energy (and gradient) of all terms at `x`, without touching the Hessian.

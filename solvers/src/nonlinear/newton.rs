@@ -257,12 +257,12 @@ impl Newton {
                     None => self.reusable = false,
                 }
             }
-            // The barrier's exact Hessian first (quadratic convergence), projected where that
-            // does not factorize (the direct path only: an iterative solve cannot tell).
+            // The exact barrier and cloth Hessians first (quadratic convergence), projected where
+            // that does not factorize (the direct path only: an iterative solve cannot tell).
             let exact =
-                matches!(self.linear, Linear::Direct(_)) && system.set_exact_contact_hessian(true);
+                matches!(self.linear, Linear::Direct(_)) && system.set_projected_hessians(false);
             let linearized = linearize(system, x, target);
-            system.set_exact_contact_hessian(false);
+            system.set_projected_hessians(true);
             let Linearized {
                 eval,
                 d_fixed,
@@ -300,7 +300,7 @@ impl Newton {
             let projected =
                 exact && matches!(solved, Err(LinearError::RegularizationFailed { .. }));
             let (shift, linear_iterations) = if projected {
-                system.project_contact_hessian(x, &target.level)?;
+                system.project_hessians(x, &target.level)?;
                 (rhs, k) = newton_matrix(system, &residual, &d_fixed)?;
                 self.solve_linear(
                     k.as_ref(),
@@ -371,7 +371,7 @@ impl Newton {
                 backtracks,
                 regularization: shift,
                 linear_iterations,
-                contact_projected: projected,
+                hessian_projected: projected,
                 ..IterationReport::default()
             });
         }

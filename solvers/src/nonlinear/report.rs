@@ -25,9 +25,9 @@ pub struct IterationReport {
     pub linear_iterations: usize,
     /// Whether the iteration reused an earlier factorization ([`crate::Jacobian::Modified`]).
     pub reused: bool,
-    /// Whether the barrier contact's pair Hessians were PSD-projected because the matrix
-    /// with the exact ones did not factorize unshifted (or the inertia was wrong).
-    pub contact_projected: bool,
+    /// Whether the barrier contact's and cloth's element Hessians were PSD-projected because
+    /// the matrix with the exact ones did not factorize unshifted (or the inertia was wrong).
+    pub hessian_projected: bool,
 }
 
 /// Where the time of a step went.

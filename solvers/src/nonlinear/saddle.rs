@@ -336,12 +336,12 @@ impl SaddleNewton {
                     Reuse::Refused => self.reusable = false,
                 }
             }
-            // The barrier's exact Hessian first (quadratic convergence), projected where the
-            // matrix then has the wrong inertia (direct paths only).
+            // The exact barrier and cloth Hessians first (quadratic convergence), projected where
+            // the matrix then has the wrong inertia (direct paths only).
             let exact = !matches!(self.linear, Linear::Iterative(_))
-                && system.set_exact_contact_hessian(true);
+                && system.set_projected_hessians(false);
             let linearized = self.linearize(system, x, p, target);
-            system.set_exact_contact_hessian(false);
+            system.set_projected_hessians(true);
             let Linearized {
                 d_fixed,
                 sigma_f,
@@ -387,7 +387,7 @@ impl SaddleNewton {
             let mut shift = self.factorize(k, g, near_null_space, &shifts, report);
             let projected = exact && matches!(shift, Err(LinearError::RegularizationFailed { .. }));
             if let (true, Some(g)) = (projected, g_again) {
-                system.project_contact_hessian(x, &target.level)?;
+                system.project_hessians(x, &target.level)?;
                 let k;
                 (rhs_x, k) = newton_matrix(system, &sigma_f, &d_fixed)?;
                 shift = self.factorize(k, g, near_null_space, &ShiftSchedule::default(), report);
@@ -493,7 +493,7 @@ impl SaddleNewton {
                     _ => 0,
                 },
                 reused: false,
-                contact_projected: projected,
+                hessian_projected: projected,
             });
         }
         if let Some(gap) = remaining_gap(x, target) {

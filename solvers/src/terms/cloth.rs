@@ -2,9 +2,9 @@
 //! bending of every interior edge (`isochor_energies::cloth`), over the sheet's nodes among
 //! the problem's. A sheet tighter than its placement (`rest_scale < 1`) is tightened as a load
 //! is applied: its rest lengths shrink from the placed ones to `rest_scale` times them along
-//! the load ramp (at once in dynamics, where loads are applied at once). The element Hessians are projected onto the PSD cone (a sheet under
-//! compression buckles, and a hinge away from its rest angle is indefinite), so that Newton
-//! steps descend.
+//! the load ramp (at once in dynamics, where loads are applied at once). The element
+//! Hessians are exact or projected onto the PSD cone ([`EnergyTerm::project_hessian`]): a
+//! sheet under compression buckles, and a hinge away from its rest angle is indefinite.
 
 use super::{block_pattern, scatter, EnergyTerm};
 use crate::error::SolverError;
@@ -16,6 +16,7 @@ use isochor_energies::triangle::RestTriangle;
 use isochor_energies::{project_to_psd, TriangleTerms};
 use isochor_mesh::{hinges, Vec3};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Membrane and bending energy of one cloth sheet.
 #[derive(Debug)]
@@ -27,6 +28,8 @@ pub struct Cloth {
     rest_scale: f64,
     hinges: Vec<[usize; 4]>,
     rest_hinges: Vec<RestHinge>,
+    /// Whether the element Hessians are PSD-projected (the default) or exact.
+    projected: AtomicBool,
 }
 
 impl Cloth {
@@ -74,6 +77,7 @@ impl Cloth {
             rest_scale,
             hinges,
             rest_hinges,
+            projected: AtomicBool::new(true),
         })
     }
 
@@ -146,6 +150,11 @@ impl EnergyTerm for Cloth {
         triangles.chain(hinges).collect()
     }
 
+    fn project_hessian(&self, projected: bool) -> bool {
+        self.projected.store(projected, Ordering::Relaxed);
+        true
+    }
+
     fn evaluate(
         &self,
         x: &[Vec3],
@@ -154,7 +163,7 @@ impl EnergyTerm for Cloth {
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
         // Elements evaluated in parallel, then summed in element order (resumed runs must
-        // equal uninterrupted ones bit for bit); the Hessians projected only when asked for.
+        // equal uninterrupted ones bit for bit).
         let scale = self.scale_at(level);
         let membranes: Vec<TriangleTerms> = (0..self.triangles.len())
             .into_par_iter()
@@ -165,15 +174,22 @@ impl EnergyTerm for Cloth {
             .map(|h| self.bending(x, h))
             .collect::<Result<_, _>>()?;
         if let Some(out) = hessian {
+            let projected = self.projected.load(Ordering::Relaxed);
             let (triangle_blocks, hinge_blocks) = out.split_at_mut(81 * membranes.len());
             triangle_blocks
                 .par_chunks_mut(81)
                 .zip(membranes.par_iter())
-                .for_each(|(o, m)| o.copy_from_slice(project_to_psd(&m.hessian).as_slice()));
+                .for_each(|(o, m)| match projected {
+                    true => o.copy_from_slice(project_to_psd(&m.hessian).as_slice()),
+                    false => o.copy_from_slice(m.hessian.as_slice()),
+                });
             hinge_blocks
                 .par_chunks_mut(144)
                 .zip(hinges.par_iter())
-                .for_each(|(o, h)| o.copy_from_slice(project_to_psd(&h.hessian).as_slice()));
+                .for_each(|(o, h)| match projected {
+                    true => o.copy_from_slice(project_to_psd(&h.hessian).as_slice()),
+                    false => o.copy_from_slice(h.hessian.as_slice()),
+                });
         }
         if let Some(out) = gradient {
             for (nodes, m) in self.triangles.iter().zip(&membranes) {

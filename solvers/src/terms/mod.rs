@@ -64,6 +64,15 @@ pub trait EnergyTerm: Send + Sync + std::fmt::Debug {
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError>;
 
+    /// For terms whose element Hessians can be indefinite and are then PSD-projected (barrier
+    /// contact, cloth): makes later evaluations project them (`true`, their default) or keep
+    /// them exact (`false`), and returns whether the term now has any such block (without
+    /// one there is nothing to choose). The Newton solvers try the exact Hessian first and
+    /// project only where it fails to factorize. Other terms: `false`, nothing changes.
+    fn project_hessian(&self, _projected: bool) -> bool {
+        false
+    }
+
     /// Whether `x` lies in the term's domain (for example no inverted tet under `log J`).
     fn is_valid(&self, _x: &[Vec3]) -> bool {
         true

@@ -265,17 +265,6 @@ impl SurfaceContact {
         true
     }
 
-    /// Makes the Hessians of later evaluations exact (`true`) or, as IPC does, every pair's
-    /// block projected onto the positive semidefinite cone (`false`, the default). The
-    /// projection keeps Newton's matrix definite but slows its convergence to linear; the
-    /// solvers try the exact Hessian first and project when it fails to factorize.
-    pub fn set_exact_hessian(&self, exact: bool) {
-        self.active
-            .write()
-            .unwrap_or_else(|e| e.into_inner())
-            .exact_hessian = exact;
-    }
-
     /// How many times the pairs (and so the pattern) changed.
     pub fn rebuilds(&self) -> usize {
         self.read().rebuilds
@@ -418,6 +407,14 @@ impl EnergyTerm for SurfaceContact {
             .iter()
             .flat_map(|nodes| rows.pattern(nodes))
             .collect()
+    }
+
+    /// As IPC does, every pair's block projected onto the positive semidefinite cone by
+    /// default: that keeps Newton's matrix definite but slows its convergence to linear.
+    fn project_hessian(&self, projected: bool) -> bool {
+        let mut active = self.active.write().unwrap_or_else(|e| e.into_inner());
+        active.exact_hessian = !projected;
+        !active.candidates.is_empty()
     }
 
     fn evaluate(

@@ -112,7 +112,10 @@ pub fn compare(request: &CompareRequest) -> Result<(Comparison, Option<PathBuf>)
         .transpose()?;
     let mut rows = Vec::new();
     for (sweep_value, label, variant, overrides, scene) in plans {
-        let options = RunOptions::in_memory(variant, &overrides, request.progress);
+        let mut options = RunOptions::in_memory(variant, &overrides, request.progress);
+        options.preview = out
+            .as_ref()
+            .map(|d| d.path().join(preview_name(&label, sweep_value.as_deref())));
         let result = run_scene(&scene, &options)
             .map(|(r, _)| r)
             .map_err(|e| e.to_string());
@@ -167,9 +170,27 @@ pub const RESIDUALS_PLOT: &str = "compare-residuals.png";
 /// The plot of the energies and the volume change against time (dynamic scenes).
 pub const ENERGY_PLOT: &str = "compare-energy.png";
 
-/// Where a comparison wrote its tables and plots, for messages.
+/// The file of a run's preview (its final state drawn, as `isochor run` draws
+/// `preview.png`): `preview-LABEL.png`, or `preview-LABEL-VALUE.png` in a sweep, with every
+/// character but letters, digits, `.`, `-` and `_` replaced by `_`.
+pub fn preview_name(label: &str, sweep_value: Option<&str>) -> String {
+    let stem = match sweep_value {
+        Some(v) => format!("{label}-{v}"),
+        None => label.to_string(),
+    };
+    let safe: String = stem
+        .chars()
+        .map(|c| match c {
+            'a'..='z' | 'A'..='Z' | '0'..='9' | '.' | '-' | '_' => c,
+            _ => '_',
+        })
+        .collect();
+    format!("preview-{safe}.png")
+}
+
+/// Where a comparison wrote its tables and plots, for messages (the previews as a count).
 pub fn describe_output(path: &Path) -> String {
-    let files: Vec<String> = [
+    let mut files: Vec<String> = [
         "compare.csv",
         "compare.md",
         "compare.json",
@@ -182,5 +203,14 @@ pub fn describe_output(path: &Path) -> String {
     .filter(|p| p.is_file())
     .map(|p| p.display().to_string())
     .collect();
+    let previews = std::fs::read_dir(path).map_or(0, |entries| {
+        entries
+            .filter_map(Result::ok)
+            .filter(|e| e.file_name().to_string_lossy().starts_with("preview-"))
+            .count()
+    });
+    if previews > 0 {
+        files.push(format!("{previews} previews (preview-*.png)"));
+    }
     format!("wrote {}", files.join(", "))
 }

@@ -18,7 +18,7 @@ use crate::resolve::problem;
 use isochor_mesh::{ElementMesh, Vec3};
 use isochor_solvers::{LoadLevel, RunSummary, SimulationFailure, SolverError, State, StepReport};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// What the stepping ended with.
 pub(super) struct Outcome {
@@ -88,6 +88,9 @@ pub(super) fn finish(
     };
     let result = run.result(history)?;
     let Some(dir) = out else {
+        if let (Some(path), true) = (&options.preview, scene.output.writes_preview()) {
+            preview(scene, body, &observer, &ending.state, &result, path)?;
+        }
         return Ok((result, None));
     };
     if let Some(w) = &observer.frames {
@@ -110,7 +113,8 @@ pub(super) fn finish(
         scene.output.potential_against.as_deref(),
     )?;
     if scene.output.writes_preview() {
-        preview(scene, body, &observer, &ending.state, &result, &dir)?;
+        let path = dir.path().join("preview.png");
+        preview(scene, body, &observer, &ending.state, &result, &path)?;
     }
     Ok((result, Some(dir.commit()?)))
 }
@@ -270,17 +274,17 @@ fn nan_probes(scene: &Scene) -> BTreeMap<String, f64> {
     scene.probes.keys().map(|k| (k.clone(), f64::NAN)).collect()
 }
 
-/// Writes `preview.png`, the final state of the body.
+/// Draws the final state of the body (`preview.png`) to `path`.
 fn preview(
     scene: &Scene,
     body: &Body,
     observer: &Observer<'_>,
     state: &State,
     result: &RunResult,
-    dir: &OutputDir,
+    path: &Path,
 ) -> Result<(), SceneError> {
     write_preview(
-        &dir.path().join("preview.png"),
+        path,
         &body.mesh,
         &FrameFields {
             positions: &state.positions,
@@ -297,6 +301,12 @@ fn preview(
             gravity: scene.loads.gravity,
             title: &run_title(result),
             obstacles: &obstacles_at(scene, &body.mesh, observer, state)?,
+            cloths: &body
+                .cloths
+                .iter()
+                .flat_map(|sheet| &sheet.triangles)
+                .map(|t| t.map(|v| state.positions[v]))
+                .collect::<Vec<_>>(),
         },
     )
 }

@@ -75,6 +75,7 @@ pub fn run_named(
             overrides: options::recorded(overrides),
             checkpoint_every,
             on_step: None,
+            preview: None,
         },
     )
 }

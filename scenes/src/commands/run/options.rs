@@ -39,6 +39,9 @@ pub struct RunOptions {
     pub checkpoint_every: Option<usize>,
     /// Called with every accepted step (none: the command line's runs).
     pub on_step: Option<StepHook>,
+    /// Where to draw the final state's preview in a run without an output folder (one run of
+    /// a comparison); a run with one draws `preview.png` there.
+    pub preview: Option<PathBuf>,
 }
 
 impl RunOptions {
@@ -52,6 +55,7 @@ impl RunOptions {
             overrides: recorded(overrides),
             checkpoint_every: None,
             on_step: None,
+            preview: None,
         }
     }
 }

@@ -33,6 +33,14 @@ pub(super) fn cut_record(report: &StepReport) -> CutRecord {
         force_residuals: residuals.force,
         constraint_residuals: residuals.constraint,
         volume_errors: residuals.volume_error,
+        step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
+        backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
+        shifts: report.iterations.iter().map(|i| i.regularization).collect(),
+        hessian_projected: report
+            .iterations
+            .iter()
+            .map(|i| i.hessian_projected)
+            .collect(),
         error: report.failure.clone().unwrap_or_default(),
     }
 }
@@ -101,10 +109,10 @@ pub(super) fn record(
         step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
         backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
         shifts: report.iterations.iter().map(|i| i.regularization).collect(),
-        contact_projected: report
+        hessian_projected: report
             .iterations
             .iter()
-            .map(|i| i.contact_projected)
+            .map(|i| i.hessian_projected)
             .collect(),
         volume_change: mesh.total_volume_at(&state.positions) / mesh.rest_volume() - 1.0,
         inverted_tets,

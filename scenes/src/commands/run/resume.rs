@@ -26,6 +26,7 @@ pub fn resume_run(dir: &Path, progress: bool) -> Result<(RunResult, Option<PathB
         overrides: checkpoint.overrides.clone(),
         checkpoint_every: Some(checkpoint.every),
         on_step: None,
+        preview: None,
     };
     let scene = checkpoint.scene.clone();
     execute(&scene, &options, Some(out), Some(checkpoint))
