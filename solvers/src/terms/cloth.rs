@@ -13,10 +13,13 @@ use isochor_energies::cloth::bending::{HingeTerms, RestHinge};
 use isochor_energies::cloth::membrane::energy_gradient_hessian;
 use isochor_energies::cloth::Fabric;
 use isochor_energies::triangle::RestTriangle;
-use isochor_energies::{project_to_psd, TriangleTerms};
+use isochor_energies::{project_to_psd, TriangleTerms, Vector12, Vector9};
 use isochor_mesh::{hinges, Vec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// One element's energy and gradient.
+type Element<V> = (f64, V);
 
 /// Membrane and bending energy of one cloth sheet.
 #[derive(Debug)]
@@ -162,45 +165,62 @@ impl EnergyTerm for Cloth {
         gradient: Option<&mut [f64]>,
         hessian: Option<&mut [f64]>,
     ) -> Result<f64, SolverError> {
-        // Elements evaluated in parallel, then summed in element order (resumed runs must
-        // equal uninterrupted ones bit for bit).
+        // Elements evaluated in parallel, each Hessian written straight into its slot (the
+        // rest kept per element only as energy and gradient), then summed in element order
+        // (resumed runs must equal uninterrupted ones bit for bit).
         let scale = self.scale_at(level);
-        let membranes: Vec<TriangleTerms> = (0..self.triangles.len())
-            .into_par_iter()
-            .map(|t| self.membrane(x, t, scale))
-            .collect();
-        let hinges: Vec<HingeTerms> = (0..self.hinges.len())
-            .into_par_iter()
-            .map(|h| self.bending(x, h))
-            .collect::<Result<_, _>>()?;
-        if let Some(out) = hessian {
-            let projected = self.projected.load(Ordering::Relaxed);
-            let (triangle_blocks, hinge_blocks) = out.split_at_mut(81 * membranes.len());
-            triangle_blocks
-                .par_chunks_mut(81)
-                .zip(membranes.par_iter())
-                .for_each(|(o, m)| match projected {
-                    true => o.copy_from_slice(project_to_psd(&m.hessian).as_slice()),
-                    false => o.copy_from_slice(m.hessian.as_slice()),
-                });
-            hinge_blocks
-                .par_chunks_mut(144)
-                .zip(hinges.par_iter())
-                .for_each(|(o, h)| match projected {
-                    true => o.copy_from_slice(project_to_psd(&h.hessian).as_slice()),
-                    false => o.copy_from_slice(h.hessian.as_slice()),
-                });
-        }
+        let projected = self.projected.load(Ordering::Relaxed);
+        let membrane = |t: usize, slot: Option<&mut [f64]>| {
+            let m = self.membrane(x, t, scale);
+            match (slot, projected) {
+                (Some(o), true) => o.copy_from_slice(project_to_psd(&m.hessian).as_slice()),
+                (Some(o), false) => o.copy_from_slice(m.hessian.as_slice()),
+                (None, _) => {}
+            }
+            (m.energy, m.gradient)
+        };
+        let hinge = |h: usize, slot: Option<&mut [f64]>| {
+            let b = self.bending(x, h)?;
+            match (slot, projected) {
+                (Some(o), true) => o.copy_from_slice(project_to_psd(&b.hessian).as_slice()),
+                (Some(o), false) => o.copy_from_slice(b.hessian.as_slice()),
+                (None, _) => {}
+            }
+            Ok((b.energy, b.gradient))
+        };
+        let (membranes, hinges): (Vec<Element<Vector9>>, Vec<Element<Vector12>>) = match hessian {
+            Some(out) => {
+                let (triangle_blocks, hinge_blocks) = out.split_at_mut(81 * self.triangles.len());
+                let membranes = (triangle_blocks.par_chunks_mut(81).enumerate())
+                    .map(|(t, o)| membrane(t, Some(o)))
+                    .collect();
+                let hinges = (hinge_blocks.par_chunks_mut(144).enumerate())
+                    .map(|(h, o)| hinge(h, Some(o)))
+                    .collect::<Result<_, SolverError>>()?;
+                (membranes, hinges)
+            }
+            None => {
+                let membranes = (0..self.triangles.len())
+                    .into_par_iter()
+                    .map(|t| membrane(t, None))
+                    .collect();
+                let hinges = (0..self.hinges.len())
+                    .into_par_iter()
+                    .map(|h| hinge(h, None))
+                    .collect::<Result<_, SolverError>>()?;
+                (membranes, hinges)
+            }
+        };
         if let Some(out) = gradient {
-            for (nodes, m) in self.triangles.iter().zip(&membranes) {
-                scatter(nodes, m.gradient.as_slice(), out);
+            for (nodes, (_, g)) in self.triangles.iter().zip(&membranes) {
+                scatter(nodes, g.as_slice(), out);
             }
-            for (nodes, h) in self.hinges.iter().zip(&hinges) {
-                scatter(nodes, h.gradient.as_slice(), out);
+            for (nodes, (_, g)) in self.hinges.iter().zip(&hinges) {
+                scatter(nodes, g.as_slice(), out);
             }
         }
-        let energy = membranes.iter().map(|m| m.energy).sum::<f64>()
-            + hinges.iter().map(|h| h.energy).sum::<f64>();
+        let energy =
+            membranes.iter().map(|m| m.0).sum::<f64>() + hinges.iter().map(|h| h.0).sum::<f64>();
         Ok(energy)
     }
 }
