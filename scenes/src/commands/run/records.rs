@@ -4,43 +4,49 @@ use crate::record::{ContactRecord, CutRecord, StepRecord};
 use isochor_mesh::ElementMesh;
 use isochor_solvers::{Energies, IterationReport, State, StepReport, SurfaceContactSummary};
 
-/// The residual histories of a step: per iteration, then the final one.
-struct Residuals {
+/// The histories of a step's iterations: the residuals per iteration, then the final ones;
+/// the step length, backtracks, shift and Hessian projection per iteration.
+struct Histories {
     force: Vec<f64>,
     constraint: Vec<f64>,
     volume_error: Vec<f64>,
+    step_lengths: Vec<f64>,
+    backtracks: Vec<usize>,
+    shifts: Vec<f64>,
+    hessian_projected: Vec<bool>,
 }
 
-impl Residuals {
+impl Histories {
     fn of(report: &StepReport) -> Self {
         let history = |each: fn(&IterationReport) -> f64, last: f64| {
             report.iterations.iter().map(each).chain([last]).collect()
         };
-        Residuals {
+        let each = report.iterations.iter();
+        Histories {
             force: history(|i| i.force_residual, report.force_residual),
             constraint: history(|i| i.constraint_residual, report.constraint_residual),
             volume_error: history(|i| i.volume_error, report.volume_error),
+            step_lengths: each.clone().map(|i| i.step_length).collect(),
+            backtracks: each.clone().map(|i| i.backtracks).collect(),
+            shifts: each.clone().map(|i| i.regularization).collect(),
+            hessian_projected: each.map(|i| i.hessian_projected).collect(),
         }
     }
 }
 
 /// The record of a failed attempt that was retried with a smaller increment.
 pub(super) fn cut_record(report: &StepReport) -> CutRecord {
-    let residuals = Residuals::of(report);
+    let histories = Histories::of(report);
     CutRecord {
         t: report.t,
         increment: report.increment,
-        force_residuals: residuals.force,
-        constraint_residuals: residuals.constraint,
-        volume_errors: residuals.volume_error,
-        step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
-        backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
-        shifts: report.iterations.iter().map(|i| i.regularization).collect(),
-        hessian_projected: report
-            .iterations
-            .iter()
-            .map(|i| i.hessian_projected)
-            .collect(),
+        force_residuals: histories.force,
+        constraint_residuals: histories.constraint,
+        volume_errors: histories.volume_error,
+        step_lengths: histories.step_lengths,
+        backtracks: histories.backtracks,
+        shifts: histories.shifts,
+        hessian_projected: histories.hessian_projected,
         error: report.failure.clone().unwrap_or_default(),
     }
 }
@@ -95,7 +101,7 @@ pub(super) fn record(
     surface: Option<&SurfaceContactSummary>,
     meshed: &[bool],
 ) -> StepRecord {
-    let residuals = Residuals::of(report);
+    let histories = Histories::of(report);
     StepRecord {
         step: report.step,
         t: report.t,
@@ -103,17 +109,13 @@ pub(super) fn record(
         cuts: Vec::new(),
         newton_iterations: report.newton_iterations(),
         converged: report.converged,
-        force_residuals: residuals.force,
-        constraint_residuals: residuals.constraint,
-        volume_errors: residuals.volume_error,
-        step_lengths: report.iterations.iter().map(|i| i.step_length).collect(),
-        backtracks: report.iterations.iter().map(|i| i.backtracks).collect(),
-        shifts: report.iterations.iter().map(|i| i.regularization).collect(),
-        hessian_projected: report
-            .iterations
-            .iter()
-            .map(|i| i.hessian_projected)
-            .collect(),
+        force_residuals: histories.force,
+        constraint_residuals: histories.constraint,
+        volume_errors: histories.volume_error,
+        step_lengths: histories.step_lengths,
+        backtracks: histories.backtracks,
+        shifts: histories.shifts,
+        hessian_projected: histories.hessian_projected,
         volume_change: mesh.total_volume_at(&state.positions) / mesh.rest_volume() - 1.0,
         inverted_tets,
         kinetic_energy: energies.kinetic,
