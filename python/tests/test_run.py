@@ -99,7 +99,9 @@ def test_progress_exception_stops_the_run_after_its_step():
 
 
 def test_ctrl_c_stops_the_run_between_steps():
-    scene = isochor.Scene.builtin("cantilever").set("res", 1).set("steps", 100)
+    # 2,000 steps of about 1.3 ms each (dev build): the signal 50 ms after step 1 lands in
+    # the run with a wide margin (with 100 steps the run could end before the timer fired).
+    scene = isochor.Scene.builtin("cantilever").set("res", 1).set("steps", 2000)
     seen = []
 
     def interrupt_soon(step, t, iterations):
@@ -112,7 +114,7 @@ def test_ctrl_c_stops_the_run_between_steps():
         isochor.run(scene, progress=interrupt_soon)
     r = info.value.result
     stopped = int(r.steps["step"][-1])
-    assert 1 <= stopped < 100
+    assert 1 <= stopped < 2000
     # The signal is checked before the callback: the last step's call is made only if the
     # signal arrived while it ran.
     assert seen in (list(range(1, stopped)), list(range(1, stopped + 1)))
