@@ -100,9 +100,13 @@ def test_progress_exception_stops_the_run_after_its_step():
 
 def test_ctrl_c_stops_the_run_between_steps():
     # 2,000 steps of about 1.3 ms each (dev build): the signal 50 ms after step 1 lands in
-    # the run with a wide margin (with 100 steps the run could end before the timer fired).
+    # the run with a wide margin.
     scene = isochor.Scene.builtin("cantilever").set("res", 1).set("steps", 2000)
     seen = []
+    # Python raises KeyboardInterrupt on SIGINT only if SIGINT was not ignored when it
+    # started; a test process started in the background by a shell without job control
+    # inherits it ignored. Install Python's own handler for this test.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
 
     def interrupt_soon(step, t, iterations):
         seen.append(step)
@@ -110,8 +114,11 @@ def test_ctrl_c_stops_the_run_between_steps():
             # Ctrl-C from another thread while the solver runs: SIGINT to the process.
             threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT)).start()
 
-    with pytest.raises(KeyboardInterrupt) as info:
-        isochor.run(scene, progress=interrupt_soon)
+    try:
+        with pytest.raises(KeyboardInterrupt) as info:
+            isochor.run(scene, progress=interrupt_soon)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     r = info.value.result
     stopped = int(r.steps["step"][-1])
     assert 1 <= stopped < 2000
