@@ -38,7 +38,7 @@ pub mod resolve;
 pub use commands::run::{resume_run, run_named, run_scene, RunOptions};
 pub use error::SceneError;
 pub use format::{builtin, load_scene, Override, Scene, SceneSource};
-pub use record::{ContactRecord, RunResult, RunTimings, StepRecord};
+pub use record::{ContactRecord, Iterations, RunResult, RunTimings, StepRecord};
 
 // The module paths of isochor-scenes 0.1 before the crate was split by layer, kept for one
 // release so that code written against them still builds (with a deprecation warning).

@@ -307,13 +307,13 @@ fn probe(spec: &ProbeSpec, input: &ProbeInput<'_>) -> Result<f64, ProbeError> {
 fn iterations_to_reach(history: &[StepRecord], level: f64) -> Option<usize> {
     let measured = history
         .iter()
-        .flat_map(|s| &s.volume_errors)
+        .flat_map(|s| &s.iterations.volume_errors)
         .any(|&e| e != 0.0);
     if !measured {
         return None;
     }
     history.iter().try_fold(0, |most, s| {
-        let reached = match s.volume_errors.as_slice() {
+        let reached = match s.iterations.volume_errors.as_slice() {
             [] => return None,
             [_] => 0,
             [_, after @ ..] => after.iter().position(|&e| e <= level)? + 1,
@@ -544,7 +544,10 @@ mod tests {
     #[test]
     fn iterations_to_reach_counts_the_worst_step() {
         let step = |errors: &[f64]| StepRecord {
-            volume_errors: errors.to_vec(),
+            iterations: crate::record::Iterations {
+                volume_errors: errors.to_vec(),
+                ..Default::default()
+            },
             ..StepRecord::default()
         };
         let history = [

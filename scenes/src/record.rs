@@ -19,24 +19,9 @@ pub struct StepRecord {
     pub newton_iterations: usize,
     /// Whether the step met both tolerances.
     pub converged: bool,
-    /// Force residual per iteration (before each iteration), then the final one.
-    pub force_residuals: Vec<f64>,
-    /// Constraint residual per iteration, then the final one.
-    pub constraint_residuals: Vec<f64>,
-    /// Volume error (L1 norm of the constraint residual over the rest volume, Francu et al.
-    /// 2021, Fig. 8) per iteration, then the final one.
-    #[serde(default)]
-    pub volume_errors: Vec<f64>,
-    /// Accepted step length per iteration.
-    pub step_lengths: Vec<f64>,
-    /// Line-search backtracks per iteration.
-    pub backtracks: Vec<usize>,
-    /// Diagonal shift added to the stiffness per iteration (0 when none was needed).
-    pub shifts: Vec<f64>,
-    /// Per iteration: whether the barrier contact's pair and the cloth's element Hessians
-    /// were PSD-projected (the matrix with the exact ones did not factorize).
-    #[serde(default)]
-    pub hessian_projected: Vec<bool>,
+    /// Its Newton iterations.
+    #[serde(flatten)]
+    pub iterations: Iterations,
     /// Whole-body volume change (deformed/rest - 1) of the accepted state.
     pub volume_change: f64,
     /// Inverted tets in the accepted state.
@@ -121,18 +106,16 @@ impl RunTimings {
     }
 }
 
-/// An attempted step that failed and was cut.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CutRecord {
-    /// The load parameter or time it aimed at.
-    pub t: f64,
-    /// Its increment.
-    pub increment: f64,
-    /// Force residual per iteration, then the last one.
+/// The Newton iterations of one attempt of a step: residuals per iteration (before each),
+/// then the final ones; the line search and the linear solve per iteration.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Iterations {
+    /// Force residual per iteration, then the final one.
     pub force_residuals: Vec<f64>,
-    /// Constraint residual per iteration, then the last one.
+    /// Constraint residual per iteration, then the final one.
     pub constraint_residuals: Vec<f64>,
-    /// Volume error per iteration, then the last one.
+    /// Volume error (L1 norm of the constraint residual over the rest volume, Francu et al.
+    /// 2021, Fig. 8) per iteration, then the final one.
     #[serde(default)]
     pub volume_errors: Vec<f64>,
     /// Accepted step length per iteration.
@@ -141,12 +124,25 @@ pub struct CutRecord {
     /// Line-search backtracks per iteration.
     #[serde(default)]
     pub backtracks: Vec<usize>,
-    /// Diagonal shift added to the stiffness per iteration.
+    /// Diagonal shift added to the stiffness per iteration (0 when none was needed).
     #[serde(default)]
     pub shifts: Vec<f64>,
-    /// Per iteration: whether the Hessians were PSD-projected (as [`StepRecord`]'s).
+    /// Per iteration: whether the barrier contact's pair and the cloth's element Hessians
+    /// were PSD-projected (the matrix with the exact ones did not factorize).
     #[serde(default)]
     pub hessian_projected: Vec<bool>,
+}
+
+/// An attempted step that failed and was cut.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CutRecord {
+    /// The load parameter or time it aimed at.
+    pub t: f64,
+    /// Its increment.
+    pub increment: f64,
+    /// Its Newton iterations.
+    #[serde(flatten)]
+    pub iterations: Iterations,
     /// Why it failed.
     pub error: String,
 }

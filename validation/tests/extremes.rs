@@ -311,9 +311,9 @@ fn compression_to_zero_volume_and_through_it() {
                 .as_ref()
                 .expect("a stopped run records its failed step");
             assert!(
-                failed.shifts.iter().any(|s| *s > 0.0),
+                failed.iterations.shifts.iter().any(|s| *s > 0.0),
                 "{what}: the failed step never shifted its Newton matrix: {:?}",
-                failed.shifts
+                failed.iterations.shifts
             );
             assert!(probe(r, "min_volume_ratio") > 0.0, "{what}: {:?}", r.probes);
             assert_eq!(r.max_inverted_tets, 0, "{what}");

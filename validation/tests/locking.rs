@@ -255,8 +255,8 @@ fn one_load_step_reaches_the_same_equilibrium() {
             .zip(tips)
             .map(|(r, tip)| {
                 let last = r.history.last().expect("a converged run has steps");
-                let force = *last.force_residuals.last().unwrap();
-                let constraint = *last.constraint_residuals.last().unwrap();
+                let force = *last.iterations.force_residuals.last().unwrap();
+                let constraint = *last.iterations.constraint_residuals.last().unwrap();
                 tip_error_bound(r.vertices, force, constraint, tip)
             })
             .sum();

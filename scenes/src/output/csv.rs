@@ -2,7 +2,7 @@
 
 use super::atomic::write_file;
 use crate::error::SceneError;
-use crate::record::StepRecord;
+use crate::record::{Iterations, StepRecord};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -17,68 +17,36 @@ pub fn write_iterations_csv(path: &Path, history: &[StepRecord]) -> Result<(), S
         "step,t,iteration,force_residual,constraint_residual,volume_error,step_length,backtracks,shift,attempt,hessian_projected\n",
     );
     for s in history {
-        let cuts = s.cuts.iter().map(|c| {
-            let iterations = Iterations {
-                force: &c.force_residuals,
-                constraint: &c.constraint_residuals,
-                volume: &c.volume_errors,
-                lengths: &c.step_lengths,
-                backtracks: &c.backtracks,
-                shifts: &c.shifts,
-                projected: &c.hessian_projected,
-            };
-            (c.t, iterations)
-        });
-        let accepted = Iterations {
-            force: &s.force_residuals,
-            constraint: &s.constraint_residuals,
-            volume: &s.volume_errors,
-            lengths: &s.step_lengths,
-            backtracks: &s.backtracks,
-            shifts: &s.shifts,
-            projected: &s.hessian_projected,
-        };
-        for (attempt, (t, iterations)) in cuts.chain([(s.t, accepted)]).enumerate() {
-            iterations.write(&mut out, s.step, t, attempt + 1);
+        let attempts = s.cuts.iter().map(|c| (c.t, &c.iterations));
+        for (attempt, (t, iterations)) in attempts.chain([(s.t, &s.iterations)]).enumerate() {
+            write_iterations(&mut out, iterations, s.step, t, attempt + 1);
         }
     }
     write_file(path, out.as_bytes())
 }
 
-/// The per-iteration records of one attempt of a step.
-struct Iterations<'a> {
-    force: &'a [f64],
-    constraint: &'a [f64],
-    volume: &'a [f64],
-    lengths: &'a [f64],
-    backtracks: &'a [usize],
-    shifts: &'a [f64],
-    projected: &'a [bool],
-}
-
-impl Iterations<'_> {
-    /// One row per iteration (the last residuals without a step) into `out`.
-    fn write(&self, out: &mut String, step: usize, t: f64, attempt: usize) {
-        for (i, (f, c)) in self.force.iter().zip(self.constraint).enumerate() {
-            let (len, back, shift) = match (
-                self.lengths.get(i),
-                self.backtracks.get(i),
-                self.shifts.get(i),
-            ) {
-                (Some(l), Some(b), Some(r)) => (format!("{l:e}"), b.to_string(), format!("{r:e}")),
-                _ => Default::default(),
-            };
-            let projected = match (self.shifts.get(i), self.projected.get(i)) {
-                (Some(_), Some(&p)) => u8::from(p).to_string(),
-                (Some(_), None) => "0".to_string(),
-                _ => String::new(),
-            };
-            let v = volume_error(self.volume, i);
-            let _ = writeln!(
-                out,
-                "{step},{t:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt},{projected}"
-            );
-        }
+/// One row per iteration of one attempt (the last residuals without a step) into `out`.
+fn write_iterations(out: &mut String, it: &Iterations, step: usize, t: f64, attempt: usize) {
+    let rows = it.force_residuals.iter().zip(&it.constraint_residuals);
+    for (i, (f, c)) in rows.enumerate() {
+        let (len, back, shift) = match (
+            it.step_lengths.get(i),
+            it.backtracks.get(i),
+            it.shifts.get(i),
+        ) {
+            (Some(l), Some(b), Some(r)) => (format!("{l:e}"), b.to_string(), format!("{r:e}")),
+            _ => Default::default(),
+        };
+        let projected = match (it.shifts.get(i), it.hessian_projected.get(i)) {
+            (Some(_), Some(&p)) => u8::from(p).to_string(),
+            (Some(_), None) => "0".to_string(),
+            _ => String::new(),
+        };
+        let v = volume_error(&it.volume_errors, i);
+        let _ = writeln!(
+            out,
+            "{step},{t:e},{i},{f:e},{c:e},{v},{len},{back},{shift},{attempt},{projected}"
+        );
     }
 }
 
@@ -123,8 +91,8 @@ pub fn write_steps_csv(
             s.t,
             s.newton_iterations,
             s.converged,
-            s.force_residuals.last().copied().unwrap_or(0.0),
-            s.constraint_residuals.last().copied().unwrap_or(0.0),
+            s.iterations.force_residuals.last().copied().unwrap_or(0.0),
+            s.iterations.constraint_residuals.last().copied().unwrap_or(0.0),
             s.volume_change,
             s.inverted_tets,
             s.kinetic_energy,

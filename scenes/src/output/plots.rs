@@ -105,10 +105,11 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
     let all = history
         .iter()
         .flat_map(|s| {
-            s.force_residuals
+            s.iterations
+                .force_residuals
                 .iter()
-                .chain(&s.constraint_residuals)
-                .chain(&s.volume_errors)
+                .chain(&s.iterations.constraint_residuals)
+                .chain(&s.iterations.volume_errors)
         })
         .copied()
         .filter(positive);
@@ -122,7 +123,7 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
     };
     let total: usize = history
         .iter()
-        .map(|s| s.force_residuals.len())
+        .map(|s| s.iterations.force_residuals.len())
         .sum::<usize>()
         .max(2);
     let root = BitMapBackend::new(path, SIZE).into_drawing_area();
@@ -146,9 +147,9 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
     let mut labelled = [false; 3];
     for s in history {
         let series = [
-            (&s.force_residuals, BLUE),
-            (&s.constraint_residuals, RED),
-            (&s.volume_errors, GREEN),
+            (&s.iterations.force_residuals, BLUE),
+            (&s.iterations.constraint_residuals, RED),
+            (&s.iterations.volume_errors, GREEN),
         ];
         for (k, (series, color)) in series.into_iter().enumerate() {
             let points: Vec<(f64, f64)> = series
@@ -173,7 +174,7 @@ pub fn plot_residuals(path: &Path, title: &str, history: &[StepRecord]) -> Resul
                 .draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))
                 .map_err(|e| plot_error(path, e))?;
         }
-        offset += s.force_residuals.len();
+        offset += s.iterations.force_residuals.len();
     }
     let legend = labelled.iter().any(|&l| l);
     finish_plot(
@@ -304,6 +305,7 @@ pub fn plot_pressure_volume(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::record::Iterations;
 
     fn record(step: usize, residuals: &[f64]) -> StepRecord {
         StepRecord {
@@ -313,13 +315,15 @@ mod tests {
             cuts: Vec::new(),
             newton_iterations: residuals.len() - 1,
             converged: true,
-            force_residuals: residuals.to_vec(),
-            constraint_residuals: residuals.iter().map(|r| r * 0.1).collect(),
-            volume_errors: residuals.iter().map(|r| r * 0.01).collect(),
-            step_lengths: vec![1.0; residuals.len() - 1],
-            backtracks: vec![0; residuals.len() - 1],
-            shifts: vec![0.0; residuals.len() - 1],
-            hessian_projected: vec![false; residuals.len() - 1],
+            iterations: Iterations {
+                force_residuals: residuals.to_vec(),
+                constraint_residuals: residuals.iter().map(|r| r * 0.1).collect(),
+                volume_errors: residuals.iter().map(|r| r * 0.01).collect(),
+                step_lengths: vec![1.0; residuals.len() - 1],
+                backtracks: vec![0; residuals.len() - 1],
+                shifts: vec![0.0; residuals.len() - 1],
+                hessian_projected: vec![false; residuals.len() - 1],
+            },
             volume_change: 0.0,
             inverted_tets: 0,
             kinetic_energy: (step as f64).sin().abs(),

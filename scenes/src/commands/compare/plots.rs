@@ -195,8 +195,8 @@ fn residual_points(r: &RunResult) -> Vec<(f64, f64)> {
     let mut points = Vec::new();
     let mut done = 0;
     for step in r.history.iter().chain(&r.failed) {
-        let attempts = step.cuts.iter().map(|c| &c.force_residuals);
-        for residuals in attempts.chain([&step.force_residuals]) {
+        let attempts = step.cuts.iter().map(|c| &c.iterations.force_residuals);
+        for residuals in attempts.chain([&step.iterations.force_residuals]) {
             points.extend(
                 residuals
                     .iter()

@@ -181,7 +181,7 @@ impl Run<'_> {
             s.newton_iterations
                 + s.cuts
                     .iter()
-                    .map(|c| c.force_residuals.len() - 1)
+                    .map(|c| c.iterations.force_residuals.len() - 1)
                     .sum::<usize>()
         };
         Ok(RunResult {

@@ -1,52 +1,32 @@
 //! The records of a run's steps, from the solver's reports.
 
-use crate::record::{ContactRecord, CutRecord, StepRecord};
+use crate::record::{ContactRecord, CutRecord, Iterations, StepRecord};
 use isochor_mesh::ElementMesh;
 use isochor_solvers::{Energies, IterationReport, State, StepReport, SurfaceContactSummary};
 
-/// The histories of a step's iterations: the residuals per iteration, then the final ones;
-/// the step length, backtracks, shift and Hessian projection per iteration.
-struct Histories {
-    force: Vec<f64>,
-    constraint: Vec<f64>,
-    volume_error: Vec<f64>,
-    step_lengths: Vec<f64>,
-    backtracks: Vec<usize>,
-    shifts: Vec<f64>,
-    hessian_projected: Vec<bool>,
-}
-
-impl Histories {
-    fn of(report: &StepReport) -> Self {
-        let history = |each: fn(&IterationReport) -> f64, last: f64| {
-            report.iterations.iter().map(each).chain([last]).collect()
-        };
-        let each = report.iterations.iter();
-        Histories {
-            force: history(|i| i.force_residual, report.force_residual),
-            constraint: history(|i| i.constraint_residual, report.constraint_residual),
-            volume_error: history(|i| i.volume_error, report.volume_error),
-            step_lengths: each.clone().map(|i| i.step_length).collect(),
-            backtracks: each.clone().map(|i| i.backtracks).collect(),
-            shifts: each.clone().map(|i| i.regularization).collect(),
-            hessian_projected: each.map(|i| i.hessian_projected).collect(),
-        }
+/// The iterations of `report`.
+fn iterations(report: &StepReport) -> Iterations {
+    let history = |each: fn(&IterationReport) -> f64, last: f64| {
+        report.iterations.iter().map(each).chain([last]).collect()
+    };
+    let each = report.iterations.iter();
+    Iterations {
+        force_residuals: history(|i| i.force_residual, report.force_residual),
+        constraint_residuals: history(|i| i.constraint_residual, report.constraint_residual),
+        volume_errors: history(|i| i.volume_error, report.volume_error),
+        step_lengths: each.clone().map(|i| i.step_length).collect(),
+        backtracks: each.clone().map(|i| i.backtracks).collect(),
+        shifts: each.clone().map(|i| i.regularization).collect(),
+        hessian_projected: each.map(|i| i.hessian_projected).collect(),
     }
 }
 
 /// The record of a failed attempt that was retried with a smaller increment.
 pub(super) fn cut_record(report: &StepReport) -> CutRecord {
-    let histories = Histories::of(report);
     CutRecord {
         t: report.t,
         increment: report.increment,
-        force_residuals: histories.force,
-        constraint_residuals: histories.constraint,
-        volume_errors: histories.volume_error,
-        step_lengths: histories.step_lengths,
-        backtracks: histories.backtracks,
-        shifts: histories.shifts,
-        hessian_projected: histories.hessian_projected,
+        iterations: iterations(report),
         error: report.failure.clone().unwrap_or_default(),
     }
 }
@@ -101,7 +81,6 @@ pub(super) fn record(
     surface: Option<&SurfaceContactSummary>,
     meshed: &[bool],
 ) -> StepRecord {
-    let histories = Histories::of(report);
     StepRecord {
         step: report.step,
         t: report.t,
@@ -109,13 +88,7 @@ pub(super) fn record(
         cuts: Vec::new(),
         newton_iterations: report.newton_iterations(),
         converged: report.converged,
-        force_residuals: histories.force,
-        constraint_residuals: histories.constraint,
-        volume_errors: histories.volume_error,
-        step_lengths: histories.step_lengths,
-        backtracks: histories.backtracks,
-        shifts: histories.shifts,
-        hessian_projected: histories.hessian_projected,
+        iterations: iterations(report),
         volume_change: mesh.total_volume_at(&state.positions) / mesh.rest_volume() - 1.0,
         inverted_tets,
         kinetic_energy: energies.kinetic,
