@@ -44,14 +44,44 @@ pub use zonal::ZonalConstraints;
 
 use isochor_mesh::element::{TetElement, TetQuadrature};
 
-/// The cheapest rule that integrates the linear measure exactly on elements of `kind`:
-/// `W_q (J_q - 1) L_j(xi_q) = w_q (det(dx/dxi) - det(dX/dxi)) L_j(xi_q)`, a polynomial of
-/// degree `3p - 2` in `xi` for elements of order `p`, curved or not. That is the one-point rule
-/// for 4-node tets and the degree-5 rule for 10-node tets; it also makes zone volumes and the
-/// total volume change (the sum of the nodal rows) exact.
-pub fn exact_rule(kind: TetElement) -> TetQuadrature {
-    match kind {
-        TetElement::Tet4 => TetQuadrature::Degree1,
-        TetElement::Tet10 => TetQuadrature::Degree5,
+/// The shape `c` that weighs the measure in a constraint row (`integral_e c Phi(J) dV`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RowShape {
+    /// `c = 1`: one row per element (P0) or per zone.
+    One,
+    /// `c = L_j`, the linear shape function of corner `j`: four rows per element, one per
+    /// corner (P1, Taylor-Hood P2-P1 on 10-node tets).
+    Corners,
+}
+
+impl RowShape {
+    /// Rows per element.
+    pub fn rows(self) -> usize {
+        match self {
+            RowShape::One => 1,
+            RowShape::Corners => 4,
+        }
+    }
+
+    /// The polynomial degree of `c`.
+    pub fn degree(self) -> usize {
+        match self {
+            RowShape::One => 0,
+            RowShape::Corners => 1,
+        }
+    }
+}
+
+/// The cheapest rule that integrates the linear measure exactly in rows of `shape` on elements
+/// of `kind`: `W_q (J_q - 1) c(xi_q) = w_q (det(dx/dxi) - det(dX/dxi)) c(xi_q)`, a polynomial
+/// of degree `3 (p - 1) + deg c` in `xi` for elements of order `p`, curved or not. That is the
+/// one-point rule on 4-node tets; on 10-node tets the degree-3 rule for element (P0) and zonal
+/// rows and the degree-5 rule for nodal (P1) rows. It also makes zone volumes and the total
+/// volume change (the sum of the nodal rows) exact.
+pub fn exact_rule(kind: TetElement, shape: RowShape) -> TetQuadrature {
+    match (kind, shape) {
+        (TetElement::Tet4, _) => TetQuadrature::Degree1,
+        (TetElement::Tet10, RowShape::One) => TetQuadrature::Degree3,
+        (TetElement::Tet10, RowShape::Corners) => TetQuadrature::Degree5,
     }
 }

@@ -5,11 +5,11 @@
 //!
 //! Every constraint row is a sum of element integrals `integral_e c(xi) Phi(J) dV`, evaluated
 //! as `sum_q W_q c(xi_q) Phi(J_q)` with `W_q = w_q det(dX/dxi)(xi_q)`, where the row's shape
-//! `c` is one of [`Shapes`]. `Phi(det F)` is a density like an energy's, so its derivatives
+//! `c` is one of [`RowShape`]. `Phi(det F)` is a density like an energy's, so its derivatives
 //! come from the quadrature kernel of `isochor-energies` ([`kernel::evaluate`]): the
 //! constraints have no chain rule of their own.
 
-use crate::{ConstraintError, Measure};
+use crate::{ConstraintError, Measure, RowShape};
 use isochor_energies::kernel::{self, RestPoints};
 use isochor_mesh::element::{deformation_gradient, RestGeometry, TetElement, TetQuadrature};
 use isochor_mesh::{ElementMesh, Vec3};
@@ -21,26 +21,6 @@ const ELEMENTS_PER_TASK: usize = 256;
 
 /// The most points of any [`TetQuadrature`] rule.
 const MAX_POINTS: usize = 15;
-
-/// The shape `c` that weighs the measure in a constraint row.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Shapes {
-    /// `c = 1`: one row per element (P0, zones).
-    One,
-    /// `c = L_j`, the linear shape function of corner `j`: four rows per element, one per
-    /// corner (P1, Taylor-Hood P2-P1 on 10-node tets).
-    Corners,
-}
-
-impl Shapes {
-    /// Rows per element.
-    pub(crate) fn rows(self) -> usize {
-        match self {
-            Shapes::One => 1,
-            Shapes::Corners => 4,
-        }
-    }
-}
 
 /// The elements of a mesh with their rest geometry at the points of one rule, and the
 /// measure `Phi(J)` every constraint row is assembled from.
@@ -211,10 +191,10 @@ impl MeasuredElements {
     }
 
     /// The shape `c_r(xi_q)` of row `r`.
-    fn shape(&self, shapes: Shapes, q: usize, r: usize) -> f64 {
+    fn shape(&self, shapes: RowShape, q: usize, r: usize) -> f64 {
         match shapes {
-            Shapes::One => 1.0,
-            Shapes::Corners => self.corner_values[q][r],
+            RowShape::One => 1.0,
+            RowShape::Corners => self.corner_values[q][r],
         }
     }
 
@@ -241,10 +221,10 @@ impl MeasuredElements {
         &self,
         e: usize,
         x: &[Vec3],
-        shapes: Shapes,
+        shapes: RowShape,
         out: &mut [f64],
     ) -> Result<(), ConstraintError> {
-        if shapes == Shapes::One {
+        if shapes == RowShape::One {
             out[0] = self.kernel(e, x, self.rest_points(e), None, None)?;
             return Ok(());
         }
@@ -263,7 +243,7 @@ impl MeasuredElements {
     pub(crate) fn fill_values(
         &self,
         x: &[Vec3],
-        shapes: Shapes,
+        shapes: RowShape,
         out: &mut [f64],
     ) -> Result<(), ConstraintError> {
         check_len("element values", self.len() * shapes.rows(), out.len())?;
@@ -280,7 +260,7 @@ impl MeasuredElements {
     pub(crate) fn fill_gradients(
         &self,
         x: &[Vec3],
-        shapes: Shapes,
+        shapes: RowShape,
         out: &mut [f64],
         blocks: usize,
         element_of_block: impl Fn(usize) -> usize + Sync,
@@ -293,7 +273,7 @@ impl MeasuredElements {
             .enumerate()
             .try_for_each(|(b, chunk)| {
                 let e = element_of_block(b);
-                if shapes == Shapes::One {
+                if shapes == RowShape::One {
                     self.kernel(e, x, self.rest_points(e), Some(chunk), None)?;
                     return Ok(());
                 }

@@ -2,8 +2,8 @@
 //! functions (eq. 27 of Francu et al. 2021; on 10-node tets the Taylor-Hood P2-P1 pair), with
 //! consistent or lumped compliance (eq. 18).
 
-use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements, Shapes};
-use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
+use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements};
+use crate::{Compliance, ConstraintError, ConstraintSet, Measure, RowShape};
 use isochor_mesh::element::TetQuadrature;
 use isochor_mesh::{ElementMesh, TetMesh, Vec3};
 use rayon::prelude::*;
@@ -154,7 +154,7 @@ impl ConstraintSet for NodalConstraints {
         self.elements.check_positions(x)?;
         check_len("constraint values", self.num_constraints(), out.len())?;
         let mut m = vec![0.0; 4 * self.elements.len()];
-        self.elements.fill_values(x, Shapes::Corners, &mut m)?;
+        self.elements.fill_values(x, RowShape::Corners, &mut m)?;
         out.fill(0.0);
         for (e, rows) in m.chunks_exact(4).enumerate() {
             for (v, m_j) in self.elements.corners(e).into_iter().zip(rows) {
@@ -178,7 +178,7 @@ impl ConstraintSet for NodalConstraints {
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
         self.elements.check_positions(x)?;
         self.elements
-            .fill_gradients(x, Shapes::Corners, out, self.elements.len(), |e| e)
+            .fill_gradients(x, RowShape::Corners, out, self.elements.len(), |e| e)
     }
 
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {

@@ -1,7 +1,7 @@
 //! Per-element (P0) volume constraints: one pressure per element (sec. 4.6 of Francu et al. 2021).
 
-use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements, Shapes};
-use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
+use crate::measured::{check_len, inverse_bulk_moduli, MeasuredElements};
+use crate::{Compliance, ConstraintError, ConstraintSet, Measure, RowShape};
 use isochor_mesh::element::TetQuadrature;
 use isochor_mesh::{ElementMesh, TetMesh, Vec3};
 use rayon::prelude::*;
@@ -85,7 +85,7 @@ impl ConstraintSet for PerElementConstraints {
 
     fn values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
         self.elements.check_positions(x)?;
-        self.elements.fill_values(x, Shapes::One, out)
+        self.elements.fill_values(x, RowShape::One, out)
     }
 
     fn jacobian_pattern(&self) -> Vec<(usize, usize)> {
@@ -97,7 +97,7 @@ impl ConstraintSet for PerElementConstraints {
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
         self.elements.check_positions(x)?;
         self.elements
-            .fill_gradients(x, Shapes::One, out, self.elements.len(), |e| e)
+            .fill_gradients(x, RowShape::One, out, self.elements.len(), |e| e)
     }
 
     fn geometric_stiffness_pattern(&self) -> Vec<(usize, usize)> {

@@ -1,8 +1,8 @@
 //! Zonal volume constraints: one constraint per zone of elements, zones possibly overlapping
 //! (eq. 6-9 of Sheen et al. 2021).
 
-use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements, Shapes};
-use crate::{Compliance, ConstraintError, ConstraintSet, Measure};
+use crate::measured::{check_len, inverse_bulk_modulus, MeasuredElements};
+use crate::{Compliance, ConstraintError, ConstraintSet, Measure, RowShape};
 use isochor_mesh::element::TetQuadrature;
 use isochor_mesh::{ElementMesh, ElementSurface, TetMesh, Vec3, Zones};
 use rayon::prelude::*;
@@ -190,7 +190,7 @@ impl ConstraintSet for ZonalConstraints {
         self.elements.check_positions(x)?;
         check_len("constraint values", self.zones.len(), out.len())?;
         let mut m = vec![0.0; self.elements.len()];
-        self.elements.fill_values(x, Shapes::One, &mut m)?;
+        self.elements.fill_values(x, RowShape::One, &mut m)?;
         out.par_iter_mut()
             .zip(self.zones.par_iter())
             .for_each(|(c, zone)| *c = zone.iter().map(|&e| m[e]).sum());
@@ -207,7 +207,7 @@ impl ConstraintSet for ZonalConstraints {
     fn jacobian_values(&self, x: &[Vec3], out: &mut [f64]) -> Result<(), ConstraintError> {
         self.elements.check_positions(x)?;
         self.elements
-            .fill_gradients(x, Shapes::One, out, self.entries.len(), |b| {
+            .fill_gradients(x, RowShape::One, out, self.entries.len(), |b| {
                 self.entries[b].1
             })
     }

@@ -263,8 +263,8 @@ fn quadrature_rules_are_exact_to_their_degree_and_no_further() {
     let tet: Vec<_> = (0..=5)
         .map(|d| TetQuadrature::for_degree(d).unwrap())
         .collect();
-    use TetQuadrature::{Degree1, Degree2, Degree5};
-    assert_eq!(tet, [Degree1, Degree1, Degree2, Degree5, Degree5, Degree5]);
+    use TetQuadrature::{Degree1, Degree2, Degree3, Degree5};
+    assert_eq!(tet, [Degree1, Degree1, Degree2, Degree3, Degree5, Degree5]);
     assert!(matches!(
         TetQuadrature::for_degree(6),
         Err(MeshError::InvalidParameter { .. })

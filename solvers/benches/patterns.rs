@@ -15,7 +15,7 @@ mod common;
 
 use common::cantilever_tet10;
 use criterion::{criterion_group, criterion_main, Criterion};
-use isochor_constraints::{exact_rule, ConstraintSet, Measure, NodalConstraints};
+use isochor_constraints::{exact_rule, ConstraintSet, Measure, NodalConstraints, RowShape};
 use isochor_energies::DistortionalNeoHookean;
 use isochor_solvers::linear::{KktOptions, KktSolver, SparsityPattern, Triangle};
 use isochor_solvers::terms::{BlockOrder, Elastic, ElementBlocks, EnergyTerm};
@@ -50,7 +50,7 @@ impl Setup {
         .expect("elastic term");
         let constraints = NodalConstraints::on_elements(
             &mesh,
-            exact_rule(mesh.kind()),
+            exact_rule(mesh.kind(), RowShape::Corners),
             Measure::Linear,
             material.mixed_kappa().expect("kappa"),
             material.nodal_compliance,

@@ -25,7 +25,7 @@ mod common;
 use common::{cantilever_tet10, per_iteration};
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use faer::sparse::SparseColMat;
-use isochor_constraints::{exact_rule, ConstraintSet, Measure, NodalConstraints};
+use isochor_constraints::{exact_rule, ConstraintSet, Measure, NodalConstraints, RowShape};
 use isochor_energies::DistortionalNeoHookean;
 use isochor_mesh::Vec3;
 use isochor_solvers::linear::{KktOptions, KktSolver, ShiftSchedule, SparsityPattern, Triangle};
@@ -140,7 +140,7 @@ impl Iteration {
         let gravity = DeadLoad::gravity(&weights, g);
         let constraints = NodalConstraints::on_elements(
             &mesh,
-            exact_rule(mesh.kind()),
+            exact_rule(mesh.kind(), RowShape::Corners),
             Measure::Linear,
             material.mixed_kappa().expect("kappa"),
             material.nodal_compliance,

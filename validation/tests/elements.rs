@@ -9,12 +9,14 @@
 //!   element and `Psi(F)` is not a polynomial, so no rule is exact. The degree-2 rule integrates
 //!   the small-strain stiffness (`dN_a/dX . C dN_b/dX`, degree 2) exactly, so its rest Hessian
 //!   equals the degree-5 rule's; the one-point rule leaves spurious zero-energy modes.
-//! - **Constraints: the degree-5 rule** ([`isochor_constraints::exact_rule`]). With the linear
-//!   measure, `W_q (J_q - 1) L_j(xi_q) = w_q (det(dx/dxi) - det(dX/dxi)) L_j(xi_q)` is a
-//!   polynomial of degree 4 in `xi` on straight and curved elements, so the 15-point degree-5
-//!   rule integrates the P1 rows exactly (checked against a composite rule on 8 sub-tets), and
-//!   the degree-2 rule does not; zone volumes and the total volume change are then exact. The
-//!   logarithmic measure is not a polynomial and uses the same points.
+//! - **Constraints: the degree-3 rule for element and zonal rows, the degree-5 rule for nodal
+//!   rows** ([`isochor_constraints::exact_rule`]). With the linear measure,
+//!   `W_q (J_q - 1) c(xi_q) = w_q (det(dx/dxi) - det(dX/dxi)) c(xi_q)` is a polynomial of
+//!   degree 3 (`c = 1`) or 4 (`c = L_j`) in `xi` on straight and curved elements, so the
+//!   8-point degree-3 rule integrates the P0 rows and the 15-point degree-5 rule the P1 rows
+//!   exactly (checked against a composite rule on 8 sub-tets), and the rules one degree lower
+//!   do not; zone volumes and the total volume change are then exact. The logarithmic measure
+//!   is not a polynomial and uses the same points.
 //! - **Epidermis, 6-node faces: the 3-point degree-2 rule.** At rest `U'(1) = 0`, so the
 //!   Hessian is `lambda_e U''(1) ds/dx ds/dx^T / S`, with `ds/dx` linear on a flat face: degree
 //!   2, integrated exactly (equal to the degree-4 rule's).
@@ -25,7 +27,7 @@
 
 use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
-    PerElementConstraints, ZonalConstraints,
+    PerElementConstraints, RowShape, ZonalConstraints,
 };
 use isochor_energies::kernel::{self, RestPoints};
 use isochor_energies::triangle::{self, area_element, RestFacePoints};
@@ -358,16 +360,17 @@ struct Case {
     reference: DVector<f64>,
 }
 
-/// Every constraint type on `d.mesh` with the degree-5 rule: P0 and P1 with both measures, and
-/// zonal with overlapping zones.
+/// Every constraint type on `d.mesh` with its [`exact_rule`]: P0 and P1 with both measures,
+/// and zonal with overlapping zones.
 fn all_cases(d: &DeformedElements) -> Vec<Case> {
-    let rule = exact_rule(d.mesh.kind());
+    let rule = |shape| exact_rule(d.mesh.kind(), shape);
     let mut cases = Vec::new();
     for measure in [Measure::Linear, Measure::Logarithmic] {
-        let element_rows = direct_integrals(d, rule, measure, false);
+        let element_rows = direct_integrals(d, rule(RowShape::One), measure, false);
         cases.push(Case {
             set: Box::new(
-                PerElementConstraints::on_elements(&d.mesh, rule, measure, 10.0).expect("P0"),
+                PerElementConstraints::on_elements(&d.mesh, rule(RowShape::One), measure, 10.0)
+                    .expect("P0"),
             ),
             reference: DVector::from_iterator(
                 element_rows.len(),
@@ -378,20 +381,25 @@ fn all_cases(d: &DeformedElements) -> Vec<Case> {
             set: Box::new(
                 NodalConstraints::on_elements(
                     &d.mesh,
-                    rule,
+                    rule(RowShape::Corners),
                     measure,
                     10.0,
                     NodalCompliance::Consistent,
                 )
                 .expect("P1"),
             ),
-            reference: nodal_rows(&d.mesh, &direct_integrals(d, rule, measure, true)),
+            reference: nodal_rows(
+                &d.mesh,
+                &direct_integrals(d, rule(RowShape::Corners), measure, true),
+            ),
         });
     }
     let zones = test_zones(d.mesh.num_elements());
-    let element_rows = direct_integrals(d, rule, Measure::Linear, false);
+    let element_rows = direct_integrals(d, rule(RowShape::One), Measure::Linear, false);
     cases.push(Case {
-        set: Box::new(ZonalConstraints::on_elements(&d.mesh, rule, &zones).expect("zonal")),
+        set: Box::new(
+            ZonalConstraints::on_elements(&d.mesh, rule(RowShape::One), &zones).expect("zonal"),
+        ),
         reference: DVector::from_iterator(
             zones.len(),
             zones
@@ -497,7 +505,7 @@ fn composite_rule() -> Vec<(Vec3, f64)> {
 
 /// `integral_e (J - 1) L_j dV = integral (det(dx/dxi) - det(dX/dxi)) L_j dxi` of every corner
 /// of every element, by the composite rule, from the isoparametric maps alone.
-fn composite_nodal_rows(d: &DeformedElements) -> DVector<f64> {
+fn composite_corner_integrals(d: &DeformedElements) -> Vec<Vec<f64>> {
     let kind = d.mesh.kind();
     let mut dn = vec![Vec3::zeros(); kind.num_nodes()];
     let mut integrals = vec![vec![0.0; 4]; d.mesh.num_elements()];
@@ -512,46 +520,60 @@ fn composite_nodal_rows(d: &DeformedElements) -> DVector<f64> {
             }
         }
     }
-    nodal_rows(&d.mesh, &integrals)
+    integrals
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
-    /// The constraint rule: [`exact_rule`] (degree 5) integrates the linear P1 rows exactly on
-    /// straight and curved 10-node tets (equal to the composite rule), the degree-2 rule does
-    /// not; zone volumes by quadrature equal the divergence-theorem volume of the zone's 6-node
-    /// faces.
+    /// The constraint rules: [`exact_rule`] integrates the linear P0 rows (degree 3) and P1
+    /// rows (degree 5) exactly on straight and curved 10-node tets (equal to the composite
+    /// rule), the rules one degree lower do not; zone volumes by quadrature equal the
+    /// divergence-theorem volume of the zone's 6-node faces.
     #[test]
-    fn degree_five_integrates_the_linear_measure_exactly(
+    fn exact_rules_integrate_the_linear_measure_exactly(
         d in prop_oneof![
             quadratic(two_tets(0.1, 0.2, 0.3), 0.0, 0.08, 0.2),
             quadratic(two_tets(0.1, 0.2, 0.3), 0.08, 0.08, 0.2),
         ],
     ) {
-        let exact = composite_nodal_rows(&d);
-        let rows = |rule| {
+        let corners = composite_corner_integrals(&d);
+        let volume = d.mesh.rest_volume();
+        let nodal = |rule| {
             let set = NodalConstraints::on_elements(
                 &d.mesh, rule, Measure::Linear, 1.0, NodalCompliance::Lumped,
             )
             .expect("P1");
             values(&set, &d.x)
         };
-        let volume = d.mesh.rest_volume();
-        let err5 = (rows(exact_rule(TetElement::Tet10)) - &exact).amax() / volume;
-        let err2 = (rows(TetQuadrature::Degree2) - &exact).amax() / volume;
+        let exact = nodal_rows(&d.mesh, &corners);
+        let err5 = (nodal(exact_rule(TetElement::Tet10, RowShape::Corners)) - &exact).amax() / volume;
+        let err3 = (nodal(TetQuadrature::Degree3) - &exact).amax() / volume;
         record("P1 rows, degree 5 vs composite (relative to V)", err5);
         prop_assert!(err5 < 1e-13, "degree 5: {err5:e}");
-        prop_assert!(err2 > 1e-9, "degree 2 is exact here? {err2:e}");
+        prop_assert!(err3 > 1e-9, "P1 rows: degree 3 is exact here? {err3:e}");
+
+        let element = |rule| {
+            let set = PerElementConstraints::on_elements(&d.mesh, rule, Measure::Linear, 1.0)
+                .expect("P0");
+            values(&set, &d.x)
+        };
+        let exact = DVector::from_iterator(corners.len(), corners.iter().map(|r| r.iter().sum()));
+        let err3 = (element(exact_rule(TetElement::Tet10, RowShape::One)) - &exact).amax() / volume;
+        let err2 = (element(TetQuadrature::Degree2) - &exact).amax() / volume;
+        record("P0 rows, degree 3 vs composite (relative to V)", err3);
+        prop_assert!(err3 < 1e-13, "degree 3: {err3:e}");
+        prop_assert!(err2 > 1e-9, "P0 rows: degree 2 is exact here? {err2:e}");
 
         let zones = test_zones(d.mesh.num_elements());
-        let zonal = ZonalConstraints::on_elements(&d.mesh, exact_rule(TetElement::Tet10), &zones)
-            .expect("zonal");
+        let zonal =
+            ZonalConstraints::on_elements(&d.mesh, exact_rule(TetElement::Tet10, RowShape::One), &zones)
+                .expect("zonal");
         for z in 0..zones.len() {
             let by_points = zonal.zone_volume(z, &d.x).expect("zone volume");
             let by_faces = zonal.zone_boundary_volume(z, &d.x).expect("boundary volume");
             let err = (by_points - by_faces).abs() / by_faces;
-            record("zone volume, degree 5 vs 6-node faces", err);
+            record("zone volume, degree 3 vs 6-node faces", err);
             prop_assert!(err < 1e-13, "zone {z}: {by_points} vs {by_faces}");
         }
     }
@@ -570,7 +592,7 @@ fn taylor_hood_jacobian_has_no_spurious_pressure_modes() {
     let quadratic = ElementMesh::quadratic(corners.clone());
     let p2 = NodalConstraints::on_elements(
         &quadratic,
-        exact_rule(TetElement::Tet10),
+        exact_rule(TetElement::Tet10, RowShape::Corners),
         Measure::Linear,
         f64::INFINITY,
         NodalCompliance::Lumped,

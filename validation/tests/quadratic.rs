@@ -15,7 +15,7 @@
 
 use crate::common;
 
-use isochor_constraints::{exact_rule, Measure, NodalCompliance, NodalConstraints};
+use isochor_constraints::{exact_rule, Measure, NodalCompliance, NodalConstraints, RowShape};
 use isochor_mesh::generate::{ball, ball_surface, box_grid, cylinder, cylinder_surface};
 use isochor_mesh::probes::displacement_at;
 use isochor_mesh::{ElementMesh, TetMesh, Vec3};
@@ -674,7 +674,7 @@ fn cantilever_tet10_keeps_the_volume_at_nu_one_half() {
 fn jacobian_singular_values(mesh: &ElementMesh) -> Vec<f64> {
     let set = NodalConstraints::on_elements(
         mesh,
-        exact_rule(mesh.kind()),
+        exact_rule(mesh.kind(), RowShape::Corners),
         Measure::Linear,
         f64::INFINITY,
         NodalCompliance::Consistent,

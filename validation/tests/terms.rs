@@ -5,7 +5,7 @@
 //! zero-compliance folding of static condensation are also checked against their formulas.
 
 use isochor_constraints::{
-    exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+    exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints, RowShape,
 };
 use isochor_energies::{standard_neo_hookean, Epidermis, Lame, MooneyRivlin};
 use isochor_mesh::{ElementMesh, Vec3};
@@ -89,7 +89,7 @@ fn nodal(mesh: &ElementMesh) -> Arc<dyn ConstraintSet> {
     Arc::new(
         NodalConstraints::on_elements(
             mesh,
-            exact_rule(mesh.kind()),
+            exact_rule(mesh.kind(), RowShape::Corners),
             Measure::Linear,
             1e3,
             NodalCompliance::Lumped,

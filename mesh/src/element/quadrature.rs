@@ -15,12 +15,21 @@ pub enum TetQuadrature {
     /// 4 points, exact for degree 2 (Hammer, Marlowe and Stroud, "Numerical integration over
     /// simplexes and cones", Math. Tables Aids Comput. 10, 1956).
     Degree2,
+    /// 8 points on two orbits, exact for degree 3: the face centroids `(1/3, 1/3, 1/3, 0)` with
+    /// total weight `0.36` and the orbit `(1/8, 1/8, 1/8, 5/8)` with `0.64` (fractions of the
+    /// volume). A fully symmetric rule is exact to degree 3 when it integrates `1`,
+    /// `sum_i lambda_i^2` and `sum_i lambda_i^3` exactly (averages `2/5` and `1/5`); on the
+    /// orbit `(a, a, a, 1 - 3a)` these sums are `12a^2 - 6a + 1` and `-24a^3 + 27a^2 - 9a + 1`,
+    /// and the two orbits above are a rational pair that meets both with positive weights
+    /// (a centroid would need a negative weight, Stroud's 5-point rule). Half the points of
+    /// the degree-5 rule, for the element (P0) and zonal rows on 10-node tets.
+    Degree3,
     /// 15 points, exact for degree 5 (Keast, "Moderate-degree tetrahedral quadrature
     /// formulas", Comput. Methods Appl. Mech. Engrg. 55, 1986: the degree-5 rule with the
     /// centroid, face centroids, the orbit `(1/11, 1/11, 1/11, 8/11)` and the orbit
-    /// `(a, a, 1/2 - a, 1/2 - a)`, `a = 1/4 - sqrt(91)/52`). It serves degrees 3 and 4 too:
-    /// Keast's 11-point degree-4 rule has a negative weight, and the positive 15-point rule
-    /// costs only 4 points more.
+    /// `(a, a, 1/2 - a, 1/2 - a)`, `a = 1/4 - sqrt(91)/52`). It serves degree 4 too: Keast's
+    /// 11-point degree-4 rule has a negative weight, and the positive 15-point rule costs only
+    /// 4 points more.
     Degree5,
 }
 
@@ -76,6 +85,18 @@ const TET1_WEIGHTS: [f64; 1] = [1.0 / 6.0];
 const TET2_A: f64 = 0.138_196_601_125_010_5;
 const TET2_POINTS: [Vec3; 4] = s31(TET2_A);
 const TET2_WEIGHTS: [f64; 4] = [1.0 / 24.0; 4];
+
+const TET3_POINTS: [Vec3; 8] = {
+    let f = s31(1.0 / 3.0);
+    let v = s31(1.0 / 8.0);
+    [f[0], f[1], f[2], f[3], v[0], v[1], v[2], v[3]]
+};
+/// `0.36 / 4` and `0.64 / 4` of the reference volume 1/6.
+const TET3_WEIGHTS: [f64; 8] = {
+    let f = 0.09 / 6.0;
+    let v = 0.16 / 6.0;
+    [f, f, f, f, v, v, v, v]
+};
 
 /// `1/4 - sqrt(91) / 52`.
 const KEAST5_A: f64 = 0.066_550_153_573_664_3;
@@ -140,9 +161,10 @@ fn too_high(degree: usize, highest: usize) -> MeshError {
 
 impl TetQuadrature {
     /// Every rule, by increasing degree.
-    pub const ALL: [TetQuadrature; 3] = [
+    pub const ALL: [TetQuadrature; 4] = [
         TetQuadrature::Degree1,
         TetQuadrature::Degree2,
+        TetQuadrature::Degree3,
         TetQuadrature::Degree5,
     ];
 
@@ -159,6 +181,7 @@ impl TetQuadrature {
         match self {
             TetQuadrature::Degree1 => 1,
             TetQuadrature::Degree2 => 2,
+            TetQuadrature::Degree3 => 3,
             TetQuadrature::Degree5 => 5,
         }
     }
@@ -173,6 +196,7 @@ impl TetQuadrature {
         match self {
             TetQuadrature::Degree1 => &TET1_POINTS,
             TetQuadrature::Degree2 => &TET2_POINTS,
+            TetQuadrature::Degree3 => &TET3_POINTS,
             TetQuadrature::Degree5 => &TET5_POINTS,
         }
     }
@@ -182,6 +206,7 @@ impl TetQuadrature {
         match self {
             TetQuadrature::Degree1 => &TET1_WEIGHTS,
             TetQuadrature::Degree2 => &TET2_WEIGHTS,
+            TetQuadrature::Degree3 => &TET3_WEIGHTS,
             TetQuadrature::Degree5 => &TET5_WEIGHTS,
         }
     }

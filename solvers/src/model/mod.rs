@@ -17,7 +17,7 @@ use crate::terms::{
 use crate::terms::{SurfaceContact, SurfaceContactSpec, SurfaceFriction};
 use isochor_constraints::{
     exact_rule, Compliance, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
-    PerElementConstraints, ZonalConstraints,
+    PerElementConstraints, RowShape, ZonalConstraints,
 };
 use isochor_mesh::contact::ContactSurface;
 use isochor_mesh::element::{RestGeometry, TetQuadrature};
@@ -266,10 +266,14 @@ impl Model {
 
         // Every volumetric stiffness below comes from the regions' kappa, converted once.
         let kappa = regions.try_per_element(|m| m.mixed_kappa())?;
-        let rule = exact_rule(mesh.kind());
+        let rule = |shape| exact_rule(mesh.kind(), shape);
         let nodal = |measure, kappa: &[f64], compliance| -> Result<NodalConstraints, SolverError> {
             Ok(NodalConstraints::on_regions(
-                &mesh, rule, measure, kappa, compliance,
+                &mesh,
+                rule(RowShape::Corners),
+                measure,
+                kappa,
+                compliance,
             )?)
         };
         let mut constraints: Option<Arc<dyn ConstraintSet>> = None;
@@ -305,7 +309,10 @@ impl Model {
                     Measure::Logarithmic
                 };
                 constraints = Some(Arc::new(PerElementConstraints::on_regions(
-                    &mesh, rule, measure, &kappa,
+                    &mesh,
+                    rule(RowShape::One),
+                    measure,
+                    &kappa,
                 )?));
                 NonlinearScheme::SaddleDirect
             }
@@ -355,7 +362,9 @@ impl Model {
                     NonlinearScheme::Minimize
                 } else {
                     constraints = Some(Arc::new(ZonalConstraints::on_elements(
-                        &mesh, rule, &zones,
+                        &mesh,
+                        rule(RowShape::One),
+                        &zones,
                     )?));
                     NonlinearScheme::SaddleSchur
                 }

@@ -10,6 +10,7 @@ use crate::settings::VolumeProjection;
 use faer::sparse::{SparseColMat, Triplet};
 use isochor_constraints::{
     exact_rule, jacobian_matrix, ConstraintSet, Measure, NodalCompliance, NodalConstraints,
+    RowShape,
 };
 use isochor_mesh::{ElementMesh, Vec3};
 
@@ -71,7 +72,7 @@ impl VolumeProjector {
             VolumeProjection::OneRing { recovery } => {
                 let constraints = NodalConstraints::on_elements(
                     mesh,
-                    exact_rule(mesh.kind()),
+                    exact_rule(mesh.kind(), RowShape::Corners),
                     Measure::Linear,
                     f64::INFINITY,
                     NodalCompliance::Lumped,
