@@ -29,7 +29,9 @@
 //! step); with `C > 0` and no replaced pivots the check is exact. (Regularizing
 //! with the expected signs `+1`/`-1` instead would also flip large pivots of the wrong
 //! sign, which are legitimate when `K` is indefinite along the range of `G^T`.)
-//! Sparse `LU` is the fallback.
+//! Sparse `LU` is the fallback of an unregularized factor; a regularized one whose solution
+//! stays inaccurate under AMD is analysed again under nested dissection (at `C = 0` AMD's
+//! order can meet singular leading blocks, whose replaced pivots then spoil the factor).
 
 use super::jacobi::{diagonal, saddle_point_diagonal};
 use super::operator::{norm, LinearOperator, SymmetricLower};
@@ -132,6 +134,7 @@ pub struct KktSolver {
     k_structure: SymbolicSparseColMat<usize>,
     g_structure: SymbolicSparseColMat<usize>,
     c_structure: Option<SymbolicSparseColMat<usize>>,
+    anchors: Vec<Option<usize>>,
     /// `fwd[new] = old` over the `n + m` unknowns.
     fwd: Vec<usize>,
     /// Lower triangle of the permuted matrix; inputs are, in order, the entries of `K`,
@@ -240,6 +243,7 @@ impl KktSolver {
             k_structure: copy_structure(k),
             g_structure: copy_structure(g),
             c_structure: c.map(copy_structure),
+            anchors: anchors.to_vec(),
             fwd,
             matrix: pattern.zeros(),
             pattern,
@@ -536,6 +540,8 @@ impl KktSolver {
                 what: "right-hand side",
             });
         }
+        // The fallbacks below solve again from the right-hand side the failed attempt overwrote.
+        let b = rhs.to_vec();
         let mut result = self.solve_refined(rhs);
         // LU is tried when LDL^T produced NaN, or an inaccurate solution of a system it
         // found nonsingular; a singular system (regularized pivots) with an inconsistent
@@ -552,9 +558,69 @@ impl KktSolver {
             let t = Instant::now();
             self.factorize_lu()?;
             self.report.numeric_time += t.elapsed();
+            rhs.copy_from_slice(&b);
+            result = self.solve_refined(rhs);
+        }
+        // A regularized factor whose solution stays inaccurate under AMD: at C = 0 its order
+        // can meet singular leading blocks (pivots replaced far from the null space of the
+        // matrix), which nested dissection's order, eliminating separators last, avoids.
+        let regularized_amd = matches!(self.factor, Factor::Ldlt)
+            && self.report.factorization == Factorization::RegularizedLdlt
+            && self.report.ordering == Ordering::Amd
+            && matches!(result, Err(LinearError::InaccurateSolution { .. }));
+        if regularized_amd {
+            let t = Instant::now();
+            self.reorder(Ordering::NestedDissection)?;
+            self.report.numeric_time += t.elapsed();
+            rhs.copy_from_slice(&b);
             result = self.solve_refined(rhs);
         }
         self.report.solve_time = start.elapsed();
+        result
+    }
+
+    /// Analyses the patterns again under `ordering` and factorizes the matrix of the latest
+    /// [`Self::factorize`] in the new order; later factorizations keep the new analysis.
+    fn reorder(&mut self, ordering: Ordering) -> Result<(), LinearError> {
+        let options = KktOptions {
+            ordering,
+            ..self.options
+        };
+        let mut fresh = Self::new(
+            self.k_structure.as_ref(),
+            self.g_structure.as_ref(),
+            self.c_structure.as_ref().map(|c| c.as_ref()),
+            &self.anchors,
+            options,
+        )?;
+        let mut inv = vec![0usize; self.fwd.len()];
+        fresh
+            .fwd
+            .iter()
+            .enumerate()
+            .for_each(|(new, &old)| inv[old] = new);
+        let old = self.matrix.as_ref();
+        let target = fresh.pattern.symbolic();
+        let values = fresh.matrix.val_mut();
+        for j in 0..old.ncols() {
+            for p in old.col_range(j) {
+                let (a, b) = (inv[self.fwd[old.row_idx()[p]]], inv[self.fwd[j]]);
+                let (row, col) = (a.max(b), a.min(b));
+                let rows = &target.row_idx()[target.col_range(col)];
+                let slot = rows
+                    .binary_search(&row)
+                    .map_err(|_| LinearError::PatternMismatch {
+                        what: "reordered KKT",
+                    })?;
+                values[target.col_range(col).start + slot] = old.val()[p];
+            }
+        }
+        fresh.scale = std::mem::take(&mut self.scale);
+        fresh.report.shift = self.report.shift;
+        fresh.report.factorizations = self.report.factorizations;
+        fresh.report.symbolic_time += self.report.symbolic_time;
+        let result = fresh.factorize_filled();
+        *self = fresh;
         result
     }
 
