@@ -62,14 +62,6 @@ impl RowShape {
             RowShape::Corners => 4,
         }
     }
-
-    /// The polynomial degree of `c`.
-    pub fn degree(self) -> usize {
-        match self {
-            RowShape::One => 0,
-            RowShape::Corners => 1,
-        }
-    }
 }
 
 /// The cheapest rule that integrates the linear measure exactly in rows of `shape` on elements
